@@ -1,0 +1,24 @@
+// One source for the constants shared by Rust (build.rs turns each #define into a Rust const
+// in `vct::config`) and GLSL (every shader includes this file). Integers only as plain
+// decimal literals; floats with a decimal point.
+#ifndef VCT_CONFIG_H
+#define VCT_CONFIG_H
+
+// Compute workgroup sizes (local_size_x; 3D kernels use N x N x N).
+#define WORKGROUP_1D 64
+#define WORKGROUP_2D 8
+#define WORKGROUP_3D 4
+
+// Materials: each material's textures are bound per draw (set 1); a flag says whether the
+// material has the texture (absent ones are bound to a 1x1 white texel).
+#define NO_TEXTURE 0
+#define HAS_TEXTURE 1
+
+// Lights: kinds as stored in LightGpu.kind_pad.x.
+#define LIGHT_SPOT 0
+#define LIGHT_DIRECTIONAL 1
+
+// Shadow filtering: PCF kernel radius in texels ((2r+1)^2 taps).
+#define PCF_RADIUS 1
+
+#endif

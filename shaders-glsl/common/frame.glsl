@@ -1,0 +1,33 @@
+// Per-frame uniforms and scene bindings (set 0), mirrored by `render::frame::FrameUniforms`
+// and `render::scene_gpu::MaterialGpu` in Rust. std140: only mat4 and vec4 members.
+#ifndef VCT_FRAME_GLSL
+#define VCT_FRAME_GLSL
+#include "config.h"
+
+layout(set = 0, binding = 0) uniform FrameUniforms {
+    mat4 view_proj;
+    mat4 light_view_proj;
+    vec4 camera_pos;    // xyz
+    vec4 light_pos;     // xyz: spot position; w: LIGHT_SPOT or LIGHT_DIRECTIONAL
+    vec4 light_dir;     // xyz: the way light travels (unit)
+    vec4 light_color;   // rgb: spot intensity (W/sr) or directional irradiance (W/m^2)
+    vec4 light_cone;    // x: inner half-angle, y: outer half-angle (radians); z: shadow texel size (uv)
+    vec4 viewport;      // xy: render size in pixels
+} frame;
+
+struct Material {
+    vec4 albedo;    // rgb: linear albedo; a: metallic
+    vec4 emissive;  // rgb: emitted radiance; a: roughness
+    vec4 specular;  // rgb: F0 of the dielectric lobe (zero: no specular lobe)
+    uvec4 tex;      // x: has albedo texture, y: has normal texture (HAS_TEXTURE / NO_TEXTURE)
+};
+
+layout(set = 0, binding = 1, std430) readonly buffer Materials { Material materials[]; };
+
+// Set 1: the drawn material's textures (bound per draw).
+layout(set = 1, binding = 0) uniform sampler2D albedo_texture;
+layout(set = 1, binding = 1) uniform sampler2D normal_texture;
+
+layout(push_constant) uniform Push { uint material; } push;
+
+#endif

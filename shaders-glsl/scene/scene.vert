@@ -1,0 +1,26 @@
+#version 460
+// Transforms scene vertices for the depth prepass and shading (camera) or the shadow map
+// (light, spec constant LIGHT_VIEW = 1). One shader, so prepass and shading depths match.
+#include "frame.glsl"
+
+layout(constant_id = 0) const uint LIGHT_VIEW = 0;
+
+layout(location = 0) in vec3 in_pos;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec2 out_uv;
+layout(location = 3) out vec4 out_tangent;
+
+invariant gl_Position;
+
+void main() {
+    out_world = in_pos;
+    out_normal = in_normal;
+    out_uv = in_uv;
+    out_tangent = in_tangent;
+    gl_Position = (LIGHT_VIEW == 1 ? frame.light_view_proj : frame.view_proj) * vec4(in_pos, 1.0);
+}

@@ -1,0 +1,207 @@
+//! Small command-recording helpers shared by every pass: barriers (synchronization2),
+//! dispatch by thread count, viewport setup, dynamic rendering, uploads and readbacks.
+
+use std::sync::Arc;
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+use super::{image::aspect_of, Buffer, Context, Image};
+use crate::error::Result;
+
+/// A global memory barrier.
+pub fn memory_barrier(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    src: (vk::PipelineStageFlags2, vk::AccessFlags2),
+    dst: (vk::PipelineStageFlags2, vk::AccessFlags2),
+) {
+    let b = [vk::MemoryBarrier2::default()
+        .src_stage_mask(src.0)
+        .src_access_mask(src.1)
+        .dst_stage_mask(dst.0)
+        .dst_access_mask(dst.1)];
+    unsafe { ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().memory_barriers(&b)) };
+}
+
+/// A layout transition (and memory dependency) over the given mips of an image.
+#[allow(clippy::too_many_arguments)]
+pub fn image_barrier_mips(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    image: &Image,
+    mips: std::ops::Range<u32>,
+    old: vk::ImageLayout,
+    new: vk::ImageLayout,
+    src: (vk::PipelineStageFlags2, vk::AccessFlags2),
+    dst: (vk::PipelineStageFlags2, vk::AccessFlags2),
+) {
+    let b = [vk::ImageMemoryBarrier2::default()
+        .src_stage_mask(src.0)
+        .src_access_mask(src.1)
+        .dst_stage_mask(dst.0)
+        .dst_access_mask(dst.1)
+        .old_layout(old)
+        .new_layout(new)
+        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .image(image.raw)
+        .subresource_range(vk::ImageSubresourceRange {
+            aspect_mask: aspect_of(image.desc.format),
+            base_mip_level: mips.start,
+            level_count: mips.end - mips.start,
+            base_array_layer: 0,
+            layer_count: 1,
+        })];
+    unsafe { ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&b)) };
+}
+
+/// A layout transition over every mip of an image.
+pub fn image_barrier(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    image: &Image,
+    old: vk::ImageLayout,
+    new: vk::ImageLayout,
+    src: (vk::PipelineStageFlags2, vk::AccessFlags2),
+    dst: (vk::PipelineStageFlags2, vk::AccessFlags2),
+) {
+    image_barrier_mips(ctx, cmd, image, 0..image.desc.mip_levels, old, new, src, dst);
+}
+
+/// Number of workgroups covering `threads` with groups of `local` threads per axis.
+pub fn group_count(threads: [u32; 3], local: [u32; 3]) -> [u32; 3] {
+    [threads[0].div_ceil(local[0]), threads[1].div_ceil(local[1]), threads[2].div_ceil(local[2])]
+}
+
+/// Dispatches enough workgroups of size `local` to cover `threads`.
+pub fn dispatch(ctx: &Context, cmd: vk::CommandBuffer, threads: [u32; 3], local: [u32; 3]) {
+    let g = group_count(threads, local);
+    unsafe { ctx.device.cmd_dispatch(cmd, g[0], g[1], g[2]) };
+}
+
+/// Sets a full-size viewport and scissor.
+pub fn set_viewport(ctx: &Context, cmd: vk::CommandBuffer, width: u32, height: u32) {
+    let viewport = vk::Viewport { x: 0.0, y: 0.0, width: width as f32, height: height as f32, min_depth: 0.0, max_depth: 1.0 };
+    let scissor = vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width, height } };
+    unsafe {
+        ctx.device.cmd_set_viewport(cmd, 0, &[viewport]);
+        ctx.device.cmd_set_scissor(cmd, 0, &[scissor]);
+    }
+}
+
+/// Attachments for one dynamic-rendering pass.
+pub struct Attachments<'a> {
+    pub color: Option<(&'a Image, vk::AttachmentLoadOp, [f32; 4])>,
+    pub depth: Option<(&'a Image, vk::AttachmentLoadOp)>,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Begins dynamic rendering, runs `record`, ends it. Color is in COLOR_ATTACHMENT_OPTIMAL,
+/// depth in DEPTH_ATTACHMENT_OPTIMAL; with neither, rendering has no attachments.
+pub fn render(ctx: &Context, cmd: vk::CommandBuffer, a: Attachments, record: impl FnOnce()) {
+    let color: Vec<_> = a
+        .color
+        .iter()
+        .map(|(img, load, clear)| {
+            vk::RenderingAttachmentInfo::default()
+                .image_view(img.view.raw)
+                .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+                .load_op(*load)
+                .store_op(vk::AttachmentStoreOp::STORE)
+                .clear_value(vk::ClearValue { color: vk::ClearColorValue { float32: *clear } })
+        })
+        .collect();
+    let depth = a.depth.map(|(img, load)| {
+        vk::RenderingAttachmentInfo::default()
+            .image_view(img.view.raw)
+            .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
+            .load_op(load)
+            .store_op(vk::AttachmentStoreOp::STORE)
+            .clear_value(vk::ClearValue { depth_stencil: vk::ClearDepthStencilValue { depth: 1.0, stencil: 0 } })
+    });
+    let area = vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: a.width, height: a.height } };
+    let mut info = vk::RenderingInfo::default().render_area(area).layer_count(1).color_attachments(&color);
+    if let Some(d) = depth.as_ref() {
+        info = info.depth_attachment(d);
+    }
+    unsafe { ctx.device.cmd_begin_rendering(cmd, &info) };
+    set_viewport(ctx, cmd, a.width, a.height);
+    record();
+    unsafe { ctx.device.cmd_end_rendering(cmd) };
+}
+
+/// A device-local buffer filled with `data` through a staging copy.
+pub fn upload_buffer<T: bytemuck::Pod>(
+    ctx: &Arc<Context>,
+    name: &str,
+    usage: vk::BufferUsageFlags,
+    data: &[T],
+) -> Result<Buffer> {
+    let staging = Buffer::from_slice(ctx, &format!("{name} staging"), vk::BufferUsageFlags::TRANSFER_SRC, data)?;
+    let buffer = Buffer::new(ctx, name, staging.size, usage | vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuOnly)?;
+    ctx.submit_and_wait(&format!("upload {name}"), |cmd| unsafe {
+        let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: staging.size }];
+        ctx.device.cmd_copy_buffer(cmd, staging.raw, buffer.raw, &region);
+    })?;
+    Ok(buffer)
+}
+
+/// Uploads RGBA8 texels into mip 0 of a 2D image, builds its mip chain by blits, and leaves
+/// every level in SHADER_READ_ONLY_OPTIMAL.
+pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result<()> {
+    let staging = Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, rgba8)?;
+    let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
+    let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
+    let transfer_r = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
+    let shader_r = (vk::PipelineStageFlags2::FRAGMENT_SHADER, vk::AccessFlags2::SHADER_SAMPLED_READ);
+    let levels = image.desc.mip_levels;
+    ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
+        let d = &ctx.device;
+        image_barrier(ctx, cmd, image, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL, none, transfer_w);
+        let region = [vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 })
+            .image_extent(image.desc.extent)];
+        d.cmd_copy_buffer_to_image(cmd, staging.raw, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &region);
+        for level in 1..levels {
+            image_barrier_mips(ctx, cmd, image, level - 1..level, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, transfer_w, transfer_r);
+            let (s, t) = (image.extent_at(level - 1), image.extent_at(level));
+            let sub = |m| vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: m, base_array_layer: 0, layer_count: 1 };
+            let blit = [vk::ImageBlit::default()
+                .src_subresource(sub(level - 1))
+                .src_offsets([vk::Offset3D::default(), vk::Offset3D { x: s.width as i32, y: s.height as i32, z: 1 }])
+                .dst_subresource(sub(level))
+                .dst_offsets([vk::Offset3D::default(), vk::Offset3D { x: t.width as i32, y: t.height as i32, z: 1 }])];
+            d.cmd_blit_image(cmd, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &blit, vk::Filter::LINEAR);
+        }
+        if levels > 1 {
+            image_barrier_mips(ctx, cmd, image, 0..levels - 1, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, transfer_r, shader_r);
+        }
+        image_barrier_mips(ctx, cmd, image, levels - 1..levels, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, transfer_w, shader_r);
+    })
+}
+
+/// Copies one mip of an image (in `layout`, which it is left in) to host memory.
+pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mip: u32) -> Result<Vec<u8>> {
+    let e = image.extent_at(mip);
+    let size = e.width as u64 * e.height as u64 * e.depth as u64 * super::image::texel_size(image.desc.format) as u64;
+    let staging = Buffer::new(ctx, &format!("{} readback", image.name), size, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
+    let all = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_WRITE | vk::AccessFlags2::MEMORY_READ);
+    let transfer_r = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
+    ctx.submit_and_wait(&format!("read back {}", image.name), |cmd| unsafe {
+        image_barrier_mips(ctx, cmd, image, mip..mip + 1, layout, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, all, transfer_r);
+        let region = [vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers { aspect_mask: aspect_of(image.desc.format), mip_level: mip, base_array_layer: 0, layer_count: 1 })
+            .image_extent(e)];
+        ctx.device.cmd_copy_image_to_buffer(cmd, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, staging.raw, &region);
+        image_barrier_mips(ctx, cmd, image, mip..mip + 1, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, layout, transfer_r, all);
+        let host = [vk::MemoryBarrier2::default()
+            .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
+            .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)
+            .dst_stage_mask(vk::PipelineStageFlags2::HOST)
+            .dst_access_mask(vk::AccessFlags2::HOST_READ)];
+        ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().memory_barriers(&host));
+    })?;
+    Ok(staging.read().to_vec())
+}

@@ -1,0 +1,246 @@
+//! Images with their default view, extra per-mip views, and samplers; each owns its handles
+//! and memory and carries a debug name.
+
+use std::sync::Arc;
+
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+
+use super::Context;
+use crate::error::{Error, Result, VkContext};
+
+#[derive(Clone, Copy, Debug)]
+pub struct ImageDesc {
+    pub ty: vk::ImageType,
+    pub format: vk::Format,
+    pub extent: vk::Extent3D,
+    pub mip_levels: u32,
+    pub usage: vk::ImageUsageFlags,
+}
+
+impl ImageDesc {
+    pub fn d2(format: vk::Format, width: u32, height: u32, usage: vk::ImageUsageFlags) -> Self {
+        ImageDesc {
+            ty: vk::ImageType::TYPE_2D,
+            format,
+            extent: vk::Extent3D { width, height, depth: 1 },
+            mip_levels: 1,
+            usage,
+        }
+    }
+    pub fn d3(format: vk::Format, n: u32, usage: vk::ImageUsageFlags) -> Self {
+        ImageDesc {
+            ty: vk::ImageType::TYPE_3D,
+            format,
+            extent: vk::Extent3D { width: n, height: n, depth: n },
+            mip_levels: 1,
+            usage,
+        }
+    }
+    pub fn mips(mut self, levels: u32) -> Self {
+        self.mip_levels = levels;
+        self
+    }
+}
+
+pub fn is_depth(format: vk::Format) -> bool {
+    matches!(format, vk::Format::D32_SFLOAT | vk::Format::D16_UNORM | vk::Format::D24_UNORM_S8_UINT)
+}
+
+pub fn aspect_of(format: vk::Format) -> vk::ImageAspectFlags {
+    if is_depth(format) {
+        vk::ImageAspectFlags::DEPTH
+    } else {
+        vk::ImageAspectFlags::COLOR
+    }
+}
+
+/// Bytes per texel of the formats this renderer reads back.
+pub fn texel_size(format: vk::Format) -> usize {
+    match format {
+        vk::Format::R32G32B32A32_SFLOAT => 16,
+        vk::Format::R16G16B16A16_SFLOAT => 8,
+        _ => 4,
+    }
+}
+
+pub struct ImageView {
+    ctx: Arc<Context>,
+    pub raw: vk::ImageView,
+}
+
+impl ImageView {
+    fn new(ctx: &Arc<Context>, image: vk::Image, desc: &ImageDesc, base_mip: u32, mips: u32, name: &str) -> Result<Self> {
+        let view_type = if desc.ty == vk::ImageType::TYPE_3D { vk::ImageViewType::TYPE_3D } else { vk::ImageViewType::TYPE_2D };
+        let info = vk::ImageViewCreateInfo::default()
+            .image(image)
+            .view_type(view_type)
+            .format(desc.format)
+            .subresource_range(vk::ImageSubresourceRange {
+                aspect_mask: aspect_of(desc.format),
+                base_mip_level: base_mip,
+                level_count: mips,
+                base_array_layer: 0,
+                layer_count: 1,
+            });
+        let raw = unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
+        ctx.set_name(raw, name);
+        Ok(ImageView { ctx: ctx.clone(), raw })
+    }
+}
+
+impl Drop for ImageView {
+    fn drop(&mut self) {
+        unsafe { self.ctx.device.destroy_image_view(self.raw, None) };
+    }
+}
+
+pub struct Image {
+    ctx: Arc<Context>,
+    pub raw: vk::Image,
+    allocation: Option<Allocation>,
+    pub desc: ImageDesc,
+    /// View of every mip level.
+    pub view: ImageView,
+    /// One view per mip level (for storage writes and per-level sampling).
+    pub mip_views: Vec<ImageView>,
+    pub name: String,
+}
+
+impl Image {
+    pub fn new(ctx: &Arc<Context>, name: &str, desc: ImageDesc) -> Result<Self> {
+        let info = vk::ImageCreateInfo::default()
+            .image_type(desc.ty)
+            .format(desc.format)
+            .extent(desc.extent)
+            .mip_levels(desc.mip_levels)
+            .array_layers(1)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .tiling(vk::ImageTiling::OPTIMAL)
+            .usage(desc.usage)
+            .sharing_mode(vk::SharingMode::EXCLUSIVE)
+            .initial_layout(vk::ImageLayout::UNDEFINED);
+        let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
+        let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
+        let allocation = ctx
+            .allocator()
+            .allocate(&AllocationCreateDesc {
+                name,
+                requirements,
+                location: MemoryLocation::GpuOnly,
+                linear: false,
+                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+            })
+            .map_err(|source| {
+                unsafe { ctx.device.destroy_image(raw, None) };
+                Error::Alloc { name: name.to_string(), source }
+            })?;
+        unsafe { ctx.device.bind_image_memory(raw, allocation.memory(), allocation.offset()) }
+            .vk("vkBindImageMemory")?;
+        ctx.set_name(raw, name);
+        let view = ImageView::new(ctx, raw, &desc, 0, desc.mip_levels, name)?;
+        let mip_views = if desc.mip_levels > 1 {
+            (0..desc.mip_levels)
+                .map(|m| ImageView::new(ctx, raw, &desc, m, 1, &format!("{name} mip {m}")))
+                .collect::<Result<_>>()?
+        } else {
+            Vec::new()
+        };
+        Ok(Image { ctx: ctx.clone(), raw, allocation: Some(allocation), desc, view, mip_views, name: name.to_string() })
+    }
+
+    /// The view of one mip level (the default view when there is only one).
+    pub fn mip_view(&self, level: u32) -> vk::ImageView {
+        if self.mip_views.is_empty() {
+            self.view.raw
+        } else {
+            self.mip_views[level as usize].raw
+        }
+    }
+
+    pub fn extent_at(&self, level: u32) -> vk::Extent3D {
+        let e = self.desc.extent;
+        vk::Extent3D { width: (e.width >> level).max(1), height: (e.height >> level).max(1), depth: (e.depth >> level).max(1) }
+    }
+
+    pub fn range(&self) -> vk::ImageSubresourceRange {
+        vk::ImageSubresourceRange {
+            aspect_mask: aspect_of(self.desc.format),
+            base_mip_level: 0,
+            level_count: self.desc.mip_levels,
+            base_array_layer: 0,
+            layer_count: 1,
+        }
+    }
+}
+
+impl Drop for Image {
+    fn drop(&mut self) {
+        self.mip_views.clear();
+        if let Some(a) = self.allocation.take() {
+            let _ = self.ctx.allocator().free(a);
+        }
+        unsafe { self.ctx.device.destroy_image(self.raw, None) };
+    }
+}
+
+pub struct Sampler {
+    ctx: Arc<Context>,
+    pub raw: vk::Sampler,
+}
+
+impl Sampler {
+    pub fn new(ctx: &Arc<Context>, name: &str, info: &vk::SamplerCreateInfo) -> Result<Self> {
+        let raw = unsafe { ctx.device.create_sampler(info, None) }.vk("vkCreateSampler")?;
+        ctx.set_name(raw, name);
+        Ok(Sampler { ctx: ctx.clone(), raw })
+    }
+
+    /// Trilinear, repeating (material textures).
+    pub fn linear_repeat(ctx: &Arc<Context>, name: &str) -> Result<Self> {
+        let info = vk::SamplerCreateInfo::default()
+            .mag_filter(vk::Filter::LINEAR)
+            .min_filter(vk::Filter::LINEAR)
+            .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
+            .address_mode_u(vk::SamplerAddressMode::REPEAT)
+            .address_mode_v(vk::SamplerAddressMode::REPEAT)
+            .address_mode_w(vk::SamplerAddressMode::REPEAT)
+            .max_lod(vk::LOD_CLAMP_NONE);
+        Self::new(ctx, name, &info)
+    }
+
+    /// Trilinear, clamped to a transparent border (voxel volumes).
+    pub fn linear_border(ctx: &Arc<Context>, name: &str) -> Result<Self> {
+        let info = vk::SamplerCreateInfo::default()
+            .mag_filter(vk::Filter::LINEAR)
+            .min_filter(vk::Filter::LINEAR)
+            .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
+            .address_mode_u(vk::SamplerAddressMode::CLAMP_TO_BORDER)
+            .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_BORDER)
+            .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_BORDER)
+            .border_color(vk::BorderColor::FLOAT_TRANSPARENT_BLACK)
+            .max_lod(vk::LOD_CLAMP_NONE);
+        Self::new(ctx, name, &info)
+    }
+
+    /// Depth comparison with bilinear PCF, clamped to "lit" outside the map.
+    pub fn shadow(ctx: &Arc<Context>, name: &str) -> Result<Self> {
+        let info = vk::SamplerCreateInfo::default()
+            .mag_filter(vk::Filter::LINEAR)
+            .min_filter(vk::Filter::LINEAR)
+            .address_mode_u(vk::SamplerAddressMode::CLAMP_TO_BORDER)
+            .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_BORDER)
+            .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_BORDER)
+            .border_color(vk::BorderColor::FLOAT_OPAQUE_WHITE)
+            .compare_enable(true)
+            .compare_op(vk::CompareOp::LESS_OR_EQUAL);
+        Self::new(ctx, name, &info)
+    }
+}
+
+impl Drop for Sampler {
+    fn drop(&mut self) {
+        unsafe { self.ctx.device.destroy_sampler(self.raw, None) };
+    }
+}

@@ -1,0 +1,25 @@
+//! The thin layer over `ash`: the only code that creates or destroys Vulkan objects. Every
+//! wrapper owns its handles, frees them in `Drop`, and carries a debug name.
+
+pub mod buffer;
+pub mod commands;
+pub mod context;
+pub mod descriptor;
+pub mod features;
+pub mod image;
+pub mod pipeline;
+pub mod timer;
+
+pub use buffer::Buffer;
+pub use commands::{dispatch, image_barrier, image_barrier_mips, memory_barrier, read_image, render, Attachments};
+pub use context::{Context, ContextOptions, DeviceInfo};
+pub use descriptor::{Binding, DescriptorSet};
+pub use features::Feature;
+pub use image::{Image, ImageDesc, Sampler};
+pub use pipeline::{GraphicsDesc, Pipeline, Stage, VertexLayout};
+pub use timer::{GpuTimer, Timing};
+
+/// SPIR-V of every shader in `shaders-glsl/`, compiled by build.rs.
+pub mod shaders {
+    include!(concat!(env!("OUT_DIR"), "/shaders.rs"));
+}

@@ -1,0 +1,159 @@
+//! The scene on the GPU: vertex and index buffers, the material buffer, textures (with mip
+//! chains) and descriptor set 0 that every scene-drawing pass binds (see `common/frame.glsl`).
+
+use std::sync::Arc;
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+use super::frame::FrameUniforms;
+use crate::config;
+use crate::error::Result;
+use crate::gpu::{commands, Binding, Buffer, Context, DescriptorSet, Image, ImageDesc, Sampler, VertexLayout};
+use crate::scene::{Draw, Scene, Vertex};
+
+/// Mirrors `Material` in `common/frame.glsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct MaterialGpu {
+    pub albedo: [f32; 4],
+    pub emissive: [f32; 4],
+    pub specular: [f32; 4],
+    pub tex: [u32; 4],
+}
+
+pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [
+    vk::VertexInputAttributeDescription { location: 0, binding: 0, format: vk::Format::R32G32B32_SFLOAT, offset: 0 },
+    vk::VertexInputAttributeDescription { location: 1, binding: 0, format: vk::Format::R32G32B32_SFLOAT, offset: 12 },
+    vk::VertexInputAttributeDescription { location: 2, binding: 0, format: vk::Format::R32G32_SFLOAT, offset: 24 },
+    vk::VertexInputAttributeDescription { location: 3, binding: 0, format: vk::Format::R32G32B32A32_SFLOAT, offset: 32 },
+];
+
+pub fn vertex_layout() -> VertexLayout<'static> {
+    VertexLayout { stride: std::mem::size_of::<Vertex>() as u32, attributes: &VERTEX_ATTRIBUTES }
+}
+
+pub struct SceneGpu {
+    ctx: Arc<Context>,
+    pub vertices: Buffer,
+    pub indices: Buffer,
+    pub draws: Vec<Draw>,
+    pub uniforms: Buffer,
+    _materials: Buffer,
+    _textures: Vec<Image>,
+    _sampler: Sampler,
+    /// Set 0: frame uniforms and materials.
+    pub set: DescriptorSet,
+    /// Set 1: one set of textures per material, bound per draw by [`SceneGpu::draw`].
+    pub material_sets: DescriptorSet,
+}
+
+fn can_blit_mips(ctx: &Context, format: vk::Format) -> bool {
+    let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, format) };
+    props.optimal_tiling_features.contains(
+        vk::FormatFeatureFlags::BLIT_SRC | vk::FormatFeatureFlags::BLIT_DST | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR,
+    )
+}
+
+impl SceneGpu {
+    pub fn new(ctx: &Arc<Context>, scene: &Scene) -> Result<Self> {
+        let usage = vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::STORAGE_BUFFER;
+        let vertices = commands::upload_buffer(ctx, "scene vertices", usage, &scene.mesh.vertices)?;
+        let iusage = vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::STORAGE_BUFFER;
+        let indices = commands::upload_buffer(ctx, "scene indices", iusage, &scene.mesh.indices)?;
+
+        let mut textures = Vec::new();
+        for t in &scene.textures {
+            let format = if t.srgb { vk::Format::R8G8B8A8_SRGB } else { vk::Format::R8G8B8A8_UNORM };
+            let levels = if can_blit_mips(ctx, format) { 32 - t.width.max(t.height).leading_zeros() } else { 1 };
+            let usage = vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
+            let img = Image::new(ctx, &t.path.display().to_string(), ImageDesc::d2(format, t.width, t.height, usage).mips(levels))?;
+            commands::upload_texture(ctx, &img, &t.rgba)?;
+            textures.push(img);
+        }
+        let white = Image::new(
+            ctx,
+            "white texel",
+            ImageDesc::d2(vk::Format::R8G8B8A8_UNORM, 1, 1, vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST),
+        )?;
+        commands::upload_texture(ctx, &white, &[255, 255, 255, 255])?;
+
+        let flag = |t: Option<usize>| if t.is_some() { config::HAS_TEXTURE } else { config::NO_TEXTURE };
+        let materials_gpu: Vec<MaterialGpu> = scene
+            .materials
+            .iter()
+            .map(|m| MaterialGpu {
+                albedo: m.albedo.extend(m.metallic).into(),
+                emissive: m.emissive.extend(m.roughness).into(),
+                specular: m.specular.extend(0.0).into(),
+                tex: [flag(m.albedo_texture), flag(m.normal_texture), 0, 0],
+            })
+            .collect();
+        let materials = commands::upload_buffer(ctx, "materials", vk::BufferUsageFlags::STORAGE_BUFFER, &materials_gpu)?;
+        let uniforms = Buffer::new(
+            ctx,
+            "frame uniforms",
+            std::mem::size_of::<FrameUniforms>() as u64,
+            vk::BufferUsageFlags::UNIFORM_BUFFER,
+            MemoryLocation::CpuToGpu,
+        )?;
+        let sampler = Sampler::linear_repeat(ctx, "material sampler")?;
+
+        let all = vk::ShaderStageFlags::ALL;
+        let set = DescriptorSet::new(
+            ctx,
+            "scene set",
+            &[
+                Binding::new(0, vk::DescriptorType::UNIFORM_BUFFER, all),
+                Binding::new(1, vk::DescriptorType::STORAGE_BUFFER, all),
+            ],
+        )?;
+        set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &uniforms);
+        set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &materials);
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
+        let frag = vk::ShaderStageFlags::FRAGMENT;
+        let material_sets = DescriptorSet::new_many(
+            ctx,
+            "material textures",
+            &[Binding::new(0, sampled, frag), Binding::new(1, sampled, frag)],
+            scene.materials.len() as u32,
+        )?;
+        for (i, m) in scene.materials.iter().enumerate() {
+            let view = |t: Option<usize>| t.map(|t| textures[t].view.raw).unwrap_or(white.view.raw);
+            material_sets.write_sampled_at(i, 0, view(m.albedo_texture), sampler.raw);
+            material_sets.write_sampled_at(i, 1, view(m.normal_texture), sampler.raw);
+        }
+        textures.push(white);
+
+        Ok(SceneGpu {
+            ctx: ctx.clone(),
+            vertices,
+            indices,
+            draws: scene.mesh.draws.clone(),
+            uniforms,
+            _materials: materials,
+            _textures: textures,
+            _sampler: sampler,
+            set,
+            material_sets,
+        })
+    }
+
+    /// Binds vertex and index buffers and issues one draw per material, pushing its index and,
+    /// when `textured`, binding its textures as set 1.
+    pub fn draw(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, textured: bool) {
+        let d = &self.ctx.device;
+        unsafe {
+            d.cmd_bind_vertex_buffers(cmd, 0, &[self.vertices.raw], &[0]);
+            d.cmd_bind_index_buffer(cmd, self.indices.raw, 0, vk::IndexType::UINT32);
+            for draw in &self.draws {
+                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(&draw.material));
+                if textured {
+                    let set = [self.material_sets.sets[draw.material as usize]];
+                    d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, layout, 1, &set, &[]);
+                }
+                d.cmd_draw_indexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
+            }
+        }
+    }
+}

@@ -1,0 +1,79 @@
+//! Shading pass (Freed 2018 §4.5): forward fragment shading of the visible surfaces (depth
+//! EQUAL after the prepass) into the linear HDR target.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::scene_gpu::{vertex_layout, SceneGpu};
+use super::shadow::ShadowPass;
+use super::Targets;
+use crate::error::Result;
+use crate::gpu::{self, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Pipeline, Sampler, Stage};
+
+pub struct ShadePass {
+    ctx: Arc<Context>,
+    pipeline: Pipeline,
+    set: DescriptorSet,
+    _shadow_sampler: Sampler,
+}
+
+impl ShadePass {
+    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass) -> Result<Self> {
+        let set = DescriptorSet::new(
+            ctx,
+            "shade inputs",
+            &[Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, vk::ShaderStageFlags::FRAGMENT)],
+        )?;
+        let shadow_sampler = Sampler::shadow(ctx, "shadow sampler")?;
+        set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
+        let mut desc = GraphicsDesc::new(
+            "shade",
+            vec![
+                Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&[0]),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG),
+            ],
+        );
+        desc.set_layouts = vec![scene.set.layout, scene.material_sets.layout, set.layout];
+        desc.push_constant_size = 4;
+        desc.vertex = Some(vertex_layout());
+        desc.depth_format = Targets::DEPTH_FORMAT;
+        desc.depth_test = true;
+        desc.depth_write = false;
+        desc.depth_compare = vk::CompareOp::EQUAL;
+        desc.color_formats = vec![Targets::HDR_FORMAT];
+        let pipeline = Pipeline::graphics(ctx, &desc)?;
+        Ok(ShadePass { ctx: ctx.clone(), pipeline, set, _shadow_sampler: shadow_sampler })
+    }
+
+    /// Shades into `targets.hdr`, leaving it in GENERAL for the compute passes that follow.
+    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
+        let ctx = &self.ctx;
+        let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
+        let compute_rw = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        let depth_w = (
+            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
+            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE,
+        );
+        let depth_r = (
+            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
+            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
+        );
+        gpu::memory_barrier(ctx, cmd, depth_w, depth_r);
+        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, compute_rw, color_w);
+        let att = Attachments {
+            color: Some((&targets.hdr, vk::AttachmentLoadOp::CLEAR, [0.0, 0.0, 0.0, 0.0])),
+            depth: Some((&targets.depth, vk::AttachmentLoadOp::LOAD)),
+            width: targets.width,
+            height: targets.height,
+        };
+        gpu::render(ctx, cmd, att, || {
+            self.pipeline.bind(cmd, &[scene.set.raw]);
+            unsafe {
+                ctx.device.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, self.pipeline.layout, 2, &[self.set.raw], &[])
+            };
+            scene.draw(cmd, self.pipeline.layout, true);
+        });
+        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, vk::ImageLayout::GENERAL, color_w, compute_rw);
+    }
+}

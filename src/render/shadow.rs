@@ -1,0 +1,59 @@
+//! Shadow map pass (Freed 2018 §4.2): the scene's depth from the light into a D32 texture,
+//! with slope-scaled depth bias; read by shading (PCF) and later by radiance injection.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::scene_gpu::{vertex_layout, SceneGpu};
+use crate::error::Result;
+use crate::gpu::{self, shaders, Attachments, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage};
+
+pub const SHADOW_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
+
+pub struct ShadowPass {
+    ctx: Arc<Context>,
+    pipeline: Pipeline,
+    pub map: Image,
+}
+
+impl ShadowPass {
+    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, resolution: u32) -> Result<Self> {
+        let usage = vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED;
+        let map = Image::new(ctx, "shadow map", ImageDesc::d2(SHADOW_FORMAT, resolution, resolution, usage))?;
+        let mut desc = GraphicsDesc::new(
+            "shadow map",
+            vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&[1])],
+        );
+        desc.set_layouts = vec![scene.set.layout];
+        desc.push_constant_size = 4;
+        desc.vertex = Some(vertex_layout());
+        desc.depth_format = SHADOW_FORMAT;
+        desc.depth_test = true;
+        desc.depth_write = true;
+        desc.depth_bias = Some((2.0, 2.5));
+        let pipeline = Pipeline::graphics(ctx, &desc)?;
+        Ok(ShadowPass { ctx: ctx.clone(), pipeline, map })
+    }
+
+    /// Renders the shadow map and leaves it ready for sampling in fragment and compute shaders.
+    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu) {
+        let ctx = &self.ctx;
+        let e = self.map.desc.extent;
+        let depth_w = (
+            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
+            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
+        );
+        let sampled = (
+            vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER,
+            vk::AccessFlags2::SHADER_SAMPLED_READ,
+        );
+        gpu::image_barrier(ctx, cmd, &self.map, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, sampled, depth_w);
+        let att = Attachments { color: None, depth: Some((&self.map, vk::AttachmentLoadOp::CLEAR)), width: e.width, height: e.height };
+        gpu::render(ctx, cmd, att, || {
+            self.pipeline.bind(cmd, &[scene.set.raw]);
+            scene.draw(cmd, self.pipeline.layout, false);
+        });
+        gpu::image_barrier(ctx, cmd, &self.map, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, depth_w, sampled);
+    }
+}

@@ -1,0 +1,381 @@
+//! Scenes: a mesh with materials and textures, a camera, lights and settings, loaded from a
+//! TOML scene file or a bare OBJ (framed automatically, one default light). Units are
+//! physical: metres, W/sr for spot intensity, W/m² for directional irradiance; MTL `Kd` is
+//! linear albedo. The Cornell box of `assets/cornell-spot/` is embedded as the default.
+
+pub mod file;
+pub mod obj;
+
+use std::path::{Path, PathBuf};
+
+use glam::{Mat4, Vec3};
+
+use crate::error::{Error, Result};
+use file::{LightFile, SceneFile};
+
+/// Interleaved vertex as the GPU reads it (see `shaders-glsl/common/scene.glsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    pub pos: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub tangent: [f32; 4],
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+    pub fn grow(&mut self, p: Vec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+    pub fn is_empty(&self) -> bool {
+        !(self.min.cmple(self.max).all())
+    }
+    pub fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+    pub fn size(&self) -> Vec3 {
+        self.max - self.min
+    }
+}
+
+/// A contiguous index range drawn with one material.
+#[derive(Clone, Copy, Debug)]
+pub struct Draw {
+    pub first_index: u32,
+    pub index_count: u32,
+    pub material: u32,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub vertices: Vec<Vertex>,
+    pub indices: Vec<u32>,
+    pub draws: Vec<Draw>,
+    pub bounds: Aabb,
+}
+
+impl Default for Aabb {
+    fn default() -> Self {
+        Aabb::EMPTY
+    }
+}
+
+impl Mesh {
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+    /// The three corners of triangle `t`.
+    pub fn triangle(&self, t: usize) -> [Vec3; 3] {
+        let i = &self.indices[3 * t..3 * t + 3];
+        [0, 1, 2].map(|k| Vec3::from(self.vertices[i[k] as usize].pos))
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub name: String,
+    /// Linear albedo (Lambertian BRDF = albedo / π).
+    pub albedo: Vec3,
+    /// Emitted radiance, W/(m² sr).
+    pub emissive: Vec3,
+    /// Reflectance at normal incidence for dielectrics (MTL `Ks`; zero means no specular lobe).
+    pub specular: Vec3,
+    pub roughness: f32,
+    pub metallic: f32,
+    pub albedo_texture: Option<usize>,
+    pub normal_texture: Option<usize>,
+}
+
+impl Material {
+    pub fn default_grey() -> Self {
+        Material {
+            name: "default".into(),
+            albedo: Vec3::splat(0.7),
+            emissive: Vec3::ZERO,
+            specular: Vec3::splat(0.04),
+            roughness: 0.8,
+            metallic: 0.0,
+            albedo_texture: None,
+            normal_texture: None,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Texture {
+    pub path: PathBuf,
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+    /// Colour data (decoded from sRGB by the sampler) rather than linear data (normal maps).
+    pub srgb: bool,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+    /// Full vertical field of view, degrees.
+    pub fov_y_deg: f32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Vulkan clip space has y pointing down; this flips glam's y-up projections.
+pub fn flip_y(proj: Mat4) -> Mat4 {
+    Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0)) * proj
+}
+
+impl Camera {
+    pub fn view(&self) -> Mat4 {
+        Mat4::look_at_rh(self.eye, self.target, self.up)
+    }
+    pub fn proj(&self, near: f32, far: f32) -> Mat4 {
+        let aspect = self.width as f32 / self.height as f32;
+        flip_y(Mat4::perspective_rh(self.fov_y_deg.to_radians(), aspect, near, far))
+    }
+    /// World-space ray (origin, unit direction) through the centre of pixel (x, y).
+    pub fn ray(&self, x: f32, y: f32) -> (Vec3, Vec3) {
+        let f = (self.target - self.eye).normalize();
+        let r = f.cross(self.up).normalize();
+        let u = r.cross(f);
+        let t = (self.fov_y_deg.to_radians() * 0.5).tan();
+        let aspect = self.width as f32 / self.height as f32;
+        let sx = ((x + 0.5) / self.width as f32 * 2.0 - 1.0) * t * aspect;
+        let sy = (1.0 - (y + 0.5) / self.height as f32 * 2.0) * t;
+        (self.eye, (f + r * sx + u * sy).normalize())
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+pub enum Light {
+    Spot { position: Vec3, direction: Vec3, intensity: Vec3, inner_deg: f32, outer_deg: f32 },
+    Directional { direction: Vec3, irradiance: Vec3 },
+}
+
+impl Light {
+    /// Spot falloff: 1 inside `inner`, 0 beyond `outer`, linear in angle between.
+    pub fn spot_falloff(angle_deg: f32, inner_deg: f32, outer_deg: f32) -> f32 {
+        if outer_deg <= inner_deg {
+            return if angle_deg <= outer_deg { 1.0 } else { 0.0 };
+        }
+        ((outer_deg - angle_deg) / (outer_deg - inner_deg)).clamp(0.0, 1.0)
+    }
+
+    /// A copy with every emitted quantity scaled by `s`.
+    pub fn scaled(self, s: f32) -> Light {
+        match self {
+            Light::Spot { position, direction, intensity, inner_deg, outer_deg } => {
+                Light::Spot { position, direction, intensity: intensity * s, inner_deg, outer_deg }
+            }
+            Light::Directional { direction, irradiance } => Light::Directional { direction, irradiance: irradiance * s },
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Settings {
+    pub voxel_resolution: u32,
+    pub shadow_resolution: u32,
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Where the scene came from (file path, or `<embedded>/...`).
+    pub source: PathBuf,
+    pub mesh: Mesh,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub camera: Camera,
+    pub light: Light,
+    pub settings: Settings,
+    /// Problems that did not stop loading (missing textures, dropped triangles, ...).
+    pub warnings: Vec<String>,
+}
+
+/// The embedded default scene: the Cornell box lit by a spot light.
+pub const EMBEDDED_DIR: &str = "<embedded>/cornell-spot";
+const EMBEDDED: [(&str, &[u8]); 4] = [
+    ("scene.toml", include_bytes!("../../assets/cornell-spot/scene.toml")),
+    ("scene-directional.toml", include_bytes!("../../assets/cornell-spot/scene-directional.toml")),
+    ("cornell.obj", include_bytes!("../../assets/cornell-spot/cornell.obj")),
+    ("cornell.mtl", include_bytes!("../../assets/cornell-spot/cornell.mtl")),
+];
+
+/// Reads a file, from the embedded assets when the path is under [`EMBEDDED_DIR`].
+pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    if let Ok(rest) = path.strip_prefix(EMBEDDED_DIR) {
+        let name = rest.to_string_lossy();
+        return EMBEDDED
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, b)| b.to_vec())
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "not among the embedded assets"));
+    }
+    std::fs::read(path)
+}
+
+pub const MAX_IMAGE_SIZE: u32 = 16384;
+
+fn check_finite(path: &Path, field: &str, v: &[f32]) -> Result<()> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::input(path, format!("{field} must be finite, got {v:?}")))
+    }
+}
+
+fn check_direction(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
+    check_finite(path, field, &v)?;
+    let d = Vec3::from(v);
+    if d.length_squared() < 1e-12 {
+        return Err(Error::input(path, format!("{field} must not be the zero vector")));
+    }
+    Ok(d.normalize())
+}
+
+fn check_nonneg(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
+    check_finite(path, field, &v)?;
+    if v.iter().any(|x| *x < 0.0) {
+        return Err(Error::input(path, format!("{field} must not be negative, got {v:?}")));
+    }
+    Ok(Vec3::from(v))
+}
+
+/// Checks an image size given by a scene file or the command line.
+pub fn check_image_size(width: u32, height: u32) -> Result<()> {
+    for (name, v) in [("width", width), ("height", height)] {
+        if v == 0 || v > MAX_IMAGE_SIZE {
+            return Err(Error::param(
+                if name == "width" { "width" } else { "height" },
+                format!("{v} is outside 1..={MAX_IMAGE_SIZE}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// The embedded Cornell box (spot light).
+    pub fn embedded_default() -> Result<Scene> {
+        Scene::load(&Path::new(EMBEDDED_DIR).join("scene.toml"))
+    }
+
+    /// Loads a scene file (`.toml`) or a bare OBJ (`.obj`).
+    pub fn load(path: &Path) -> Result<Scene> {
+        let ext = path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("obj") => Self::from_obj(path),
+            Some("toml") => Self::from_toml(path),
+            _ => Err(Error::input(path, "expected a scene file (.toml) or a mesh (.obj)")),
+        }
+    }
+
+    fn from_toml(path: &Path) -> Result<Scene> {
+        let bytes = read_file(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
+        let text = String::from_utf8(bytes).map_err(|_| Error::input(path, "scene file is not UTF-8 text"))?;
+        let file: SceneFile = toml::from_str(&text).map_err(|e| Error::input(path, format!("invalid scene file: {e}")))?;
+        let mesh_path = path.parent().unwrap_or(Path::new("")).join(&file.mesh);
+        let mut warnings = Vec::new();
+        let (mesh, materials, textures) = obj::load_obj(&mesh_path, &read_file, &mut warnings)?;
+        let camera = match &file.camera {
+            Some(c) => {
+                check_finite(path, "camera.eye", &c.eye)?;
+                check_finite(path, "camera.target", &c.target)?;
+                let up = check_direction(path, "camera.up", c.up)?;
+                if !(c.fov_y_deg > 0.0 && c.fov_y_deg < 180.0) {
+                    return Err(Error::input(path, format!("camera.fov_y_deg must be in (0, 180), got {}", c.fov_y_deg)));
+                }
+                check_image_size(c.width, c.height).map_err(|e| Error::input(path, format!("camera.{e}")))?;
+                if Vec3::from(c.eye).distance_squared(Vec3::from(c.target)) < 1e-12 {
+                    return Err(Error::input(path, "camera.eye and camera.target must differ"));
+                }
+                Camera { eye: c.eye.into(), target: c.target.into(), up, fov_y_deg: c.fov_y_deg, width: c.width, height: c.height }
+            }
+            None => frame_bounds(&mesh.bounds),
+        };
+        let light = match file.lights.as_slice() {
+            [] => default_light(),
+            [l] => convert_light(path, l)?,
+            more => return Err(Error::input(path, format!("{} lights given; vct renders one shadowed light", more.len()))),
+        };
+        let settings = Settings { voxel_resolution: file.voxels.resolution, shadow_resolution: file.shadow.resolution };
+        check_settings(path, &settings)?;
+        Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light, settings, warnings })
+    }
+
+    fn from_obj(path: &Path) -> Result<Scene> {
+        let mut warnings = Vec::new();
+        let (mesh, materials, textures) = obj::load_obj(path, &read_file, &mut warnings)?;
+        let camera = frame_bounds(&mesh.bounds);
+        let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048 };
+        Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light: default_light(), settings, warnings })
+    }
+
+    /// Renders at this size instead of the scene's.
+    pub fn set_size(&mut self, width: Option<u32>, height: Option<u32>) -> Result<()> {
+        let (w, h) = (width.unwrap_or(self.camera.width), height.unwrap_or(self.camera.height));
+        check_image_size(w, h)?;
+        self.camera.width = w;
+        self.camera.height = h;
+        Ok(())
+    }
+}
+
+fn check_settings(path: &Path, s: &Settings) -> Result<()> {
+    if !(16..=512).contains(&s.voxel_resolution) || !s.voxel_resolution.is_power_of_two() {
+        return Err(Error::input(path, format!("voxels.resolution must be a power of two in 16..=512, got {}", s.voxel_resolution)));
+    }
+    if !(64..=8192).contains(&s.shadow_resolution) {
+        return Err(Error::input(path, format!("shadow.resolution must be in 64..=8192, got {}", s.shadow_resolution)));
+    }
+    Ok(())
+}
+
+fn convert_light(path: &Path, l: &LightFile) -> Result<Light> {
+    Ok(match *l {
+        LightFile::Spot { position, direction, intensity, inner_deg, outer_deg } => {
+            check_finite(path, "light.position", &position)?;
+            if !(0.0..90.0).contains(&outer_deg) || !(0.0..=outer_deg).contains(&inner_deg) {
+                return Err(Error::input(
+                    path,
+                    format!("light angles must satisfy 0 <= inner_deg <= outer_deg < 90, got {inner_deg} and {outer_deg}"),
+                ));
+            }
+            Light::Spot {
+                position: position.into(),
+                direction: check_direction(path, "light.direction", direction)?,
+                intensity: check_nonneg(path, "light.intensity", intensity)?,
+                inner_deg,
+                outer_deg,
+            }
+        }
+        LightFile::Directional { direction, irradiance } => Light::Directional {
+            direction: check_direction(path, "light.direction", direction)?,
+            irradiance: check_nonneg(path, "light.irradiance", irradiance)?,
+        },
+    })
+}
+
+/// The light a bare OBJ gets: sunlight from above, slightly from the front (+z).
+pub fn default_light() -> Light {
+    Light::Directional { direction: Vec3::new(-0.25, -1.0, -0.45).normalize(), irradiance: Vec3::splat(3.0) }
+}
+
+/// A camera in front of (+z) and a little above the bounds, framing all of them.
+pub fn frame_bounds(b: &Aabb) -> Camera {
+    let (center, radius) = if b.is_empty() { (Vec3::ZERO, 1.0) } else { (b.center(), (b.size().length() * 0.5).max(1e-3)) };
+    let fov_y_deg = 45.0f32;
+    let dist = radius / (fov_y_deg.to_radians() * 0.5).sin();
+    let dir = Vec3::new(0.0, 0.25, 1.0).normalize();
+    Camera { eye: center + dir * dist, target: center, up: Vec3::Y, fov_y_deg, width: 512, height: 512 }
+}

@@ -1,0 +1,78 @@
+//! Shared test helpers: a validated Vulkan context, a CPU ray caster over a scene's triangles
+//! (brute force, independent of the GPU code) and pixel accessors.
+#![allow(dead_code)]
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use vct::gpu::{Context, ContextOptions};
+use vct::render::FrameImages;
+use vct::scene::Scene;
+
+/// A context with the validation layer on (every test asks for it).
+pub fn context() -> Arc<Context> {
+    std::env::set_var("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()));
+    Context::new(&ContextOptions { validation: true, ..Default::default() }).expect("Vulkan context with validation")
+}
+
+/// Fails the test if the validation layer said anything.
+pub fn assert_clean(ctx: &Context) {
+    assert_eq!(ctx.validation.errors(), 0, "validation errors (see log)");
+    assert_eq!(ctx.validation.warnings(), 0, "validation warnings (see log)");
+}
+
+/// Closest hit of a ray against the scene's triangles (Möller–Trumbore): (t, triangle).
+pub fn raycast(scene: &Scene, o: Vec3, d: Vec3, t_max: f32) -> Option<(f32, usize)> {
+    let mut best: Option<(f32, usize)> = None;
+    for tri in 0..scene.mesh.triangle_count() {
+        let [a, b, c] = scene.mesh.triangle(tri);
+        let (e1, e2) = (b - a, c - a);
+        let p = d.cross(e2);
+        let det = e1.dot(p);
+        if det.abs() < 1e-9 {
+            continue;
+        }
+        let inv = 1.0 / det;
+        let s = o - a;
+        let u = s.dot(p) * inv;
+        if !(0.0..=1.0).contains(&u) {
+            continue;
+        }
+        let q = s.cross(e1);
+        let v = d.dot(q) * inv;
+        if v < 0.0 || u + v > 1.0 {
+            continue;
+        }
+        let t = e2.dot(q) * inv;
+        if t > 1e-4 && t < t_max && best.is_none_or(|(bt, _)| t < bt) {
+            best = Some((t, tri));
+        }
+    }
+    best
+}
+
+pub fn hdr(frame: &FrameImages, x: u32, y: u32) -> Vec3 {
+    let i = ((y * frame.width + x) * 4) as usize;
+    Vec3::new(frame.hdr[i], frame.hdr[i + 1], frame.hdr[i + 2])
+}
+
+pub fn ldr(frame: &FrameImages, x: u32, y: u32) -> [u8; 3] {
+    let i = ((y * frame.width + x) * 4) as usize;
+    [frame.ldr[i], frame.ldr[i + 1], frame.ldr[i + 2]]
+}
+
+/// Pixel whose centre ray comes nearest to the world point `p` (pinhole projection).
+pub fn pixel_of(scene: &Scene, p: Vec3) -> (u32, u32) {
+    let c = &scene.camera;
+    let f = (c.target - c.eye).normalize();
+    let r = f.cross(c.up).normalize();
+    let u = r.cross(f);
+    let d = p - c.eye;
+    let t = (c.fov_y_deg.to_radians() * 0.5).tan();
+    let aspect = c.width as f32 / c.height as f32;
+    let sx = d.dot(r) / d.dot(f) / (t * aspect);
+    let sy = d.dot(u) / d.dot(f) / t;
+    let x = ((sx + 1.0) * 0.5 * c.width as f32 - 0.5).round();
+    let y = ((1.0 - sy) * 0.5 * c.height as f32 - 0.5).round();
+    (x as u32, y as u32)
+}
