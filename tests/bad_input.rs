@@ -1,0 +1,131 @@
+//! Bad input gives a clear error (or a warning) naming the file or parameter, never a panic:
+//! malformed scene files, broken OBJs, missing files and textures, absurd sizes.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use vct::scene::Scene;
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("vct-bad-input-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const TRIANGLE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn load_err(path: &Path) -> String {
+    match Scene::load(path) {
+        Ok(_) => panic!("{} loaded without error", path.display()),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn scene_file_with_unknown_field_names_field_and_file() {
+    let d = temp_dir("field");
+    write(&d, "tri.obj", TRIANGLE_OBJ);
+    let p = write(&d, "scene.toml", "mesh = \"tri.obj\"\n[camera]\neye = [0, 0, 3]\ntarget = [0, 0, 0]\nfov = 40\n");
+    let e = load_err(&p);
+    assert!(e.contains("scene.toml") && e.contains("fov"), "{e}");
+}
+
+#[test]
+fn scene_file_with_wrong_type_or_truncation_is_an_error() {
+    let d = temp_dir("type");
+    write(&d, "tri.obj", TRIANGLE_OBJ);
+    let p = write(&d, "a.toml", "mesh = \"tri.obj\"\n[voxels]\nresolution = \"high\"\n");
+    let e = load_err(&p);
+    assert!(e.contains("a.toml") && e.contains("resolution"), "{e}");
+    let p = write(&d, "b.toml", "mesh = \"tri.obj\"\n[camera]\neye = [0, 0,");
+    assert!(load_err(&p).contains("b.toml"));
+    let p = write(&d, "c.toml", "mesh = \"tri.obj\"\n[[light]]\nkind = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, 0, 0]\nintensity = [1, 1, 1]\ninner_deg = 10\nouter_deg = 20\n");
+    let e = load_err(&p);
+    assert!(e.contains("c.toml") && e.contains("light.direction"), "{e}");
+}
+
+#[test]
+fn obj_with_out_of_range_indices_names_the_file() {
+    let d = temp_dir("index");
+    let p = write(&d, "oob.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    let e = load_err(&p);
+    assert!(e.contains("oob.obj") && e.contains("out of bounds"), "{e}");
+    let p = write(&d, "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n");
+    assert!(load_err(&p).contains("neg.obj"));
+}
+
+#[test]
+fn obj_with_garbage_lines_is_an_error_naming_the_file_or_loads_what_remains() {
+    let d = temp_dir("garbage");
+    let p = write(&d, "garbage.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv x y z\n%%% not obj\nf 1 2 3\n");
+    match Scene::load(&p) {
+        Err(e) => assert!(e.to_string().contains("garbage.obj"), "{e}"),
+        Ok(s) => assert_eq!(s.mesh.triangle_count(), 1),
+    }
+}
+
+#[test]
+fn obj_with_non_finite_vertices_drops_those_triangles_with_a_warning() {
+    let d = temp_dir("nan");
+    let p = write(&d, "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nv inf 1 1\nf 1 2 3\nf 1 4 5\n");
+    let s = Scene::load(&p).unwrap();
+    assert_eq!(s.mesh.triangle_count(), 1);
+    assert!(s.mesh.bounds.min.is_finite() && s.mesh.bounds.max.is_finite());
+    assert!(s.warnings.iter().any(|w| w.contains("nan.obj") && w.contains("non-finite")), "{:?}", s.warnings);
+}
+
+#[test]
+fn missing_obj_names_the_path() {
+    let d = temp_dir("missing");
+    let p = write(&d, "scene.toml", "mesh = \"nowhere/absent.obj\"\n");
+    let e = load_err(&p);
+    assert!(e.contains("absent.obj"), "{e}");
+    assert!(load_err(&d.join("also-absent.obj")).contains("also-absent.obj"));
+}
+
+#[test]
+fn missing_or_broken_texture_is_a_warning_and_a_flat_colour() {
+    let d = temp_dir("texture");
+    write(&d, "m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd nope.png\nnewmtl b\nKd 0.2 0.2 0.2\nmap_Kd fake.png\n");
+    write(&d, "fake.png", "this is not an image");
+    let p = write(&d, "tex.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n");
+    let s = Scene::load(&p).unwrap();
+    assert!(s.warnings.iter().any(|w| w.contains("nope.png")), "{:?}", s.warnings);
+    assert!(s.warnings.iter().any(|w| w.contains("fake.png")), "{:?}", s.warnings);
+    assert!(s.materials.iter().all(|m| m.albedo_texture.is_none()));
+}
+
+fn vct(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_vct"))
+        .args(args)
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .output()
+        .expect("run vct");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!stderr.contains("panicked"), "vct panicked: {stderr}");
+    (out.status.code().unwrap_or(-1), stderr)
+}
+
+#[test]
+fn cli_reports_bad_input_without_panicking() {
+    let d = temp_dir("cli");
+    let p = write(&d, "broken.toml", "mesh = 3\n");
+    let (code, err) = vct(&["render", p.to_str().unwrap(), "--out", d.join("x.png").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("broken.toml"), "{err}");
+    let (code, err) = vct(&["render", "--width", "0", "--out", d.join("y.png").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("width"), "{err}");
+    let (code, err) = vct(&["render", "--width", "100000", "--out", d.join("z.png").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("width"), "{err}");
+    let (code, err) = vct(&["render", d.join("scene.txt").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("scene.txt"), "{err}");
+}
