@@ -5,8 +5,10 @@
 pub mod error;
 pub mod gpu;
 pub mod output;
+pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod voxel;
 
 /// Constants shared with GLSL (generated from `shaders-glsl/common/config.h`).
 pub mod config {

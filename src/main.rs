@@ -8,7 +8,9 @@ use clap::{Args, Parser, Subcommand};
 
 use vct::gpu::{Context, ContextOptions, Feature, Timing};
 use vct::render::Renderer;
+use vct::reference::coverage::RefGrid;
 use vct::scene::Scene;
+use vct::voxel::{headless, Coverage, VoxelizeMethod};
 
 #[derive(Parser)]
 #[command(name = "vct", version, about = "Voxel cone tracing global illumination on Vulkan (after Freed 2018)")]
@@ -21,8 +23,95 @@ struct Cli {
 enum Command {
     /// Render a scene headlessly to PNG (and optionally linear EXR).
     Render(RenderArgs),
+    /// Voxelize a scene and measure it against exact triangle/box coverage.
+    Voxelize(VoxelizeArgs),
     /// List Vulkan devices, their drivers and the features vct uses.
     Devices,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum VoxelizerArg {
+    Tess,
+    Raster,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum CoverageArg {
+    Msaa,
+    None,
+    Hw,
+}
+
+/// How to voxelize (shared by every command that voxelizes).
+#[derive(Args)]
+struct MethodArgs {
+    /// Voxelization method.
+    #[arg(long, value_enum, default_value = "tess")]
+    voxelizer: VoxelizerArg,
+    /// Rasterized path: conservative coverage by 4x MSAA, none, or hardware (VK_EXT_conservative_rasterization).
+    #[arg(long, value_enum, default_value = "msaa")]
+    coverage: CoverageArg,
+    /// Voxel grid resolution N (N³ voxels, 16..512); default: the scene's.
+    #[arg(long)]
+    res: Option<u32>,
+    /// Tessellation path: multiplier on the thesis' tessellation levels.
+    #[arg(long, default_value_t = vct::voxel::DEFAULT_LEVEL_SCALE)]
+    level_scale: f32,
+    /// Tessellation path: do not split triangles past the level limit (shows the holes).
+    #[arg(long)]
+    no_subdivide: bool,
+    /// Tessellation path: let levels below 1 drop the triangle (shows the lost small triangles).
+    #[arg(long)]
+    no_min_level: bool,
+    /// Rasterized path: framebuffer resolution over voxel resolution.
+    #[arg(long, default_value_t = 1)]
+    viewport_scale: u32,
+    /// Rasterized path: write only the voxel at each pixel centre's depth (the thesis' method).
+    #[arg(long)]
+    no_depth_span: bool,
+}
+
+impl MethodArgs {
+    fn method(&self) -> Result<VoxelizeMethod> {
+        if !(self.level_scale.is_finite() && self.level_scale > 0.0 && self.level_scale <= 16.0) {
+            bail!("--level-scale must be in (0, 16], got {}", self.level_scale);
+        }
+        if !(1..=8).contains(&self.viewport_scale) {
+            bail!("--viewport-scale must be in 1..=8, got {}", self.viewport_scale);
+        }
+        Ok(match self.voxelizer {
+            VoxelizerArg::Tess => VoxelizeMethod::Tess {
+                level_scale: self.level_scale,
+                subdivide: !self.no_subdivide,
+                min_level: !self.no_min_level,
+            },
+            VoxelizerArg::Raster => VoxelizeMethod::Raster {
+                coverage: match self.coverage {
+                    CoverageArg::Msaa => Coverage::Msaa,
+                    CoverageArg::None => Coverage::None,
+                    CoverageArg::Hw => Coverage::Hardware,
+                },
+                viewport_scale: self.viewport_scale,
+                depth_span: !self.no_depth_span,
+            },
+        })
+    }
+}
+
+#[derive(Args)]
+struct VoxelizeArgs {
+    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    scene: Option<PathBuf>,
+    #[command(flatten)]
+    method: MethodArgs,
+    /// Write the occupancy as a .binvox file.
+    #[arg(long)]
+    export: Option<PathBuf>,
+    /// Render the voxels as shaded cubes from the scene camera to this PNG.
+    #[arg(long)]
+    view: Option<PathBuf>,
+    #[command(flatten)]
+    gpu: GpuArgs,
 }
 
 #[derive(Args)]
@@ -104,6 +193,39 @@ fn render(args: RenderArgs) -> Result<()> {
     check_validation(&ctx)
 }
 
+fn voxelize(args: VoxelizeArgs) -> Result<()> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let method = args.method.method()?;
+    let res = args.method.res.unwrap_or(scene.settings.voxel_resolution);
+    let ctx = open_device(&args.gpu)?;
+    let run = headless::voxelize(&ctx, &scene, method, res, 3).context("voxelizing")?;
+    for n in &run.notes {
+        println!("{n}");
+    }
+    let g = run.grid;
+    println!("method: {}   grid: {res}³, voxel {:.4} m, {:.1} MiB", method.label(), g.voxel, g.memory_bytes() as f64 / 1048576.0);
+    let occupied = run.occupied();
+    println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
+    println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
+    let triangles: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
+    let reference = RefGrid { origin: g.origin, voxel: g.voxel, n: g.resolution }.coverage(&triangles, 1e-3);
+    let a = reference.accuracy(&occupied);
+    println!(
+        "against exact coverage: recall {:.4}  precision {:.4}  IoU {:.4}  ({} required voxels)",
+        a.recall, a.precision, a.iou, a.required
+    );
+    if let Some(path) = &args.export {
+        vct::voxel::binvox::write(path, &g, &occupied)?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(path) = &args.view {
+        let frame = vct::render::voxel_view::render_voxels(&ctx, &scene, &run)?;
+        vct::output::write_png(path, &frame)?;
+        println!("wrote {}", path.display());
+    }
+    check_validation(&ctx)
+}
+
 fn devices() -> Result<()> {
     let list = Context::list_devices().context("listing Vulkan devices")?;
     if list.is_empty() {
@@ -133,6 +255,7 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(a) => render(a),
+        Command::Voxelize(a) => voxelize(a),
         Command::Devices => devices(),
     };
     if let Err(e) = result {

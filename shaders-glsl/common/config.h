@@ -21,4 +21,11 @@
 // Shadow filtering: PCF kernel radius in texels ((2r+1)^2 taps).
 #define PCF_RADIUS 1
 
+// Voxelization.
+#define CAS_MAX_ITERATIONS 1024
+// Tessellation path: keep every level >= 1, so a triangle inside one voxel still writes it.
+#define VOXEL_FLAG_MIN_LEVEL 1
+// Rasterized path: write every voxel layer the triangle's plane spans over the pixel.
+#define VOXEL_FLAG_DEPTH_SPAN 2
+
 #endif

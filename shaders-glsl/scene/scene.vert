@@ -1,9 +1,9 @@
 #version 460
-// Transforms scene vertices for the depth prepass and shading (camera) or the shadow map
-// (light, spec constant LIGHT_VIEW = 1). One shader, so prepass and shading depths match.
+// Transforms scene vertices. Spec constant VIEW: 0 camera (depth prepass and shading: one
+// shader, so their depths match exactly), 1 light (shadow map).
 #include "frame.glsl"
 
-layout(constant_id = 0) const uint LIGHT_VIEW = 0;
+layout(constant_id = 0) const uint VIEW = 0;
 
 layout(location = 0) in vec3 in_pos;
 layout(location = 1) in vec3 in_normal;
@@ -22,5 +22,5 @@ void main() {
     out_normal = in_normal;
     out_uv = in_uv;
     out_tangent = in_tangent;
-    gl_Position = (LIGHT_VIEW == 1 ? frame.light_view_proj : frame.view_proj) * vec4(in_pos, 1.0);
+    gl_Position = (VIEW == 1 ? frame.light_view_proj : frame.view_proj) * vec4(in_pos, 1.0);
 }

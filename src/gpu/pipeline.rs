@@ -68,7 +68,7 @@ impl Spec {
     }
 }
 
-/// Vertex input: one interleaved binding.
+/// Vertex input: one interleaved binding (per vertex, or per instance when `instanced`).
 #[derive(Clone, Copy)]
 pub struct VertexLayout<'a> {
     pub stride: u32,
@@ -94,6 +94,10 @@ pub struct GraphicsDesc<'a> {
     pub color_formats: Vec<vk::Format>,
     pub samples: vk::SampleCountFlags,
     pub conservative: bool,
+    /// No rasterization at all (the tessellation voxelizer writes from the TES).
+    pub rasterizer_discard: bool,
+    /// The vertex binding advances per instance.
+    pub instanced: bool,
 }
 
 impl<'a> GraphicsDesc<'a> {
@@ -115,6 +119,8 @@ impl<'a> GraphicsDesc<'a> {
             color_formats: Vec::new(),
             samples: vk::SampleCountFlags::TYPE_1,
             conservative: false,
+            rasterizer_discard: false,
+            instanced: false,
         }
     }
 }
@@ -182,7 +188,7 @@ impl Pipeline {
                 bindings = [vk::VertexInputBindingDescription {
                     binding: 0,
                     stride: v.stride,
-                    input_rate: vk::VertexInputRate::VERTEX,
+                    input_rate: if desc.instanced { vk::VertexInputRate::INSTANCE } else { vk::VertexInputRate::VERTEX },
                 }];
                 vk::PipelineVertexInputStateCreateInfo::default()
                     .vertex_binding_descriptions(&bindings)
@@ -200,6 +206,7 @@ impl Pipeline {
             .polygon_mode(vk::PolygonMode::FILL)
             .cull_mode(desc.cull)
             .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .rasterizer_discard_enable(desc.rasterizer_discard)
             .line_width(1.0);
         if let Some((constant, slope)) = desc.depth_bias {
             raster = raster.depth_bias_enable(true).depth_bias_constant_factor(constant).depth_bias_slope_factor(slope);
@@ -255,6 +262,11 @@ impl Pipeline {
                 self.ctx.device.cmd_bind_descriptor_sets(cmd, self.bind_point, self.layout, 0, sets, &[]);
             }
         }
+    }
+
+    /// Binds one descriptor set at index `index`.
+    pub fn bind_set(&self, cmd: vk::CommandBuffer, index: u32, set: vk::DescriptorSet) {
+        unsafe { self.ctx.device.cmd_bind_descriptor_sets(cmd, self.bind_point, self.layout, index, &[set], &[]) };
     }
 
     pub fn push<T: bytemuck::Pod>(&self, cmd: vk::CommandBuffer, value: &T) {

@@ -7,6 +7,7 @@ pub mod scene_gpu;
 pub mod shade;
 pub mod shadow;
 pub mod tonemap;
+pub mod voxel_view;
 
 use std::sync::Arc;
 

@@ -10,7 +10,7 @@ use super::frame::FrameUniforms;
 use crate::config;
 use crate::error::Result;
 use crate::gpu::{commands, Binding, Buffer, Context, DescriptorSet, Image, ImageDesc, Sampler, VertexLayout};
-use crate::scene::{Draw, Scene, Vertex};
+use crate::scene::{Draw, Mesh, Scene, Vertex};
 
 /// Mirrors `Material` in `common/frame.glsl`.
 #[repr(C)]
@@ -33,11 +33,48 @@ pub fn vertex_layout() -> VertexLayout<'static> {
     VertexLayout { stride: std::mem::size_of::<Vertex>() as u32, attributes: &VERTEX_ATTRIBUTES }
 }
 
-pub struct SceneGpu {
+/// Position, normal and UV only (the voxelizers need no tangent).
+pub fn vertex_layout_untangented() -> VertexLayout<'static> {
+    VertexLayout { stride: std::mem::size_of::<Vertex>() as u32, attributes: &VERTEX_ATTRIBUTES[..3] }
+}
+
+/// A mesh on the GPU: vertex and index buffers and one draw per material.
+pub struct MeshBuffers {
     ctx: Arc<Context>,
     pub vertices: Buffer,
     pub indices: Buffer,
     pub draws: Vec<Draw>,
+}
+
+impl MeshBuffers {
+    pub fn new(ctx: &Arc<Context>, name: &str, mesh: &Mesh) -> Result<Self> {
+        let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let vertices = commands::upload_buffer(ctx, &format!("{name} vertices"), vk::BufferUsageFlags::VERTEX_BUFFER | storage, &mesh.vertices)?;
+        let indices = commands::upload_buffer(ctx, &format!("{name} indices"), vk::BufferUsageFlags::INDEX_BUFFER | storage, &mesh.indices)?;
+        Ok(MeshBuffers { ctx: ctx.clone(), vertices, indices, draws: mesh.draws.clone() })
+    }
+
+    /// Binds the buffers and issues one draw per material, pushing its index and, when given,
+    /// binding its textures (one set per material) as set 1.
+    pub fn draw(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, material_sets: Option<&DescriptorSet>) {
+        let d = &self.ctx.device;
+        unsafe {
+            d.cmd_bind_vertex_buffers(cmd, 0, &[self.vertices.raw], &[0]);
+            d.cmd_bind_index_buffer(cmd, self.indices.raw, 0, vk::IndexType::UINT32);
+            for draw in &self.draws {
+                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(&draw.material));
+                if let Some(sets) = material_sets {
+                    let set = [sets.sets[draw.material as usize]];
+                    d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, layout, 1, &set, &[]);
+                }
+                d.cmd_draw_indexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
+            }
+        }
+    }
+}
+
+pub struct SceneGpu {
+    pub mesh: MeshBuffers,
     pub uniforms: Buffer,
     _materials: Buffer,
     _textures: Vec<Image>,
@@ -57,10 +94,7 @@ fn can_blit_mips(ctx: &Context, format: vk::Format) -> bool {
 
 impl SceneGpu {
     pub fn new(ctx: &Arc<Context>, scene: &Scene) -> Result<Self> {
-        let usage = vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::STORAGE_BUFFER;
-        let vertices = commands::upload_buffer(ctx, "scene vertices", usage, &scene.mesh.vertices)?;
-        let iusage = vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::STORAGE_BUFFER;
-        let indices = commands::upload_buffer(ctx, "scene indices", iusage, &scene.mesh.indices)?;
+        let mesh = MeshBuffers::new(ctx, "scene", &scene.mesh)?;
 
         let mut textures = Vec::new();
         for t in &scene.textures {
@@ -111,7 +145,7 @@ impl SceneGpu {
         set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &uniforms);
         set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &materials);
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
-        let frag = vk::ShaderStageFlags::FRAGMENT;
+        let frag = vk::ShaderStageFlags::ALL_GRAPHICS;
         let material_sets = DescriptorSet::new_many(
             ctx,
             "material textures",
@@ -126,10 +160,7 @@ impl SceneGpu {
         textures.push(white);
 
         Ok(SceneGpu {
-            ctx: ctx.clone(),
-            vertices,
-            indices,
-            draws: scene.mesh.draws.clone(),
+            mesh,
             uniforms,
             _materials: materials,
             _textures: textures,
@@ -139,21 +170,8 @@ impl SceneGpu {
         })
     }
 
-    /// Binds vertex and index buffers and issues one draw per material, pushing its index and,
-    /// when `textured`, binding its textures as set 1.
+    /// Draws the scene's mesh; `textured` binds each material's textures as set 1.
     pub fn draw(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, textured: bool) {
-        let d = &self.ctx.device;
-        unsafe {
-            d.cmd_bind_vertex_buffers(cmd, 0, &[self.vertices.raw], &[0]);
-            d.cmd_bind_index_buffer(cmd, self.indices.raw, 0, vk::IndexType::UINT32);
-            for draw in &self.draws {
-                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(&draw.material));
-                if textured {
-                    let set = [self.material_sets.sets[draw.material as usize]];
-                    d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, layout, 1, &set, &[]);
-                }
-                d.cmd_draw_indexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
-            }
-        }
+        self.mesh.draw(cmd, layout, textured.then_some(&self.material_sets));
     }
 }

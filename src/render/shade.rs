@@ -69,9 +69,7 @@ impl ShadePass {
         };
         gpu::render(ctx, cmd, att, || {
             self.pipeline.bind(cmd, &[scene.set.raw]);
-            unsafe {
-                ctx.device.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, self.pipeline.layout, 2, &[self.set.raw], &[])
-            };
+            self.pipeline.bind_set(cmd, 2, self.set.raw);
             scene.draw(cmd, self.pipeline.layout, true);
         });
         gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, vk::ImageLayout::GENERAL, color_w, compute_rw);

@@ -1,0 +1,62 @@
+// Voxel grid parameters (set 2, mirrored by `voxel::VoxelParams`) and the atomic running
+// average that writes a voxel: packed RGBA8 in an R32UI image, the sample count in the alpha
+// byte, updated with a compare-and-swap loop (Crassin & Green, OpenGL Insights ch. 22).
+#ifndef VCT_VOXEL_GLSL
+#define VCT_VOXEL_GLSL
+#include "config.h"
+
+layout(set = 2, binding = 0) uniform VoxelParams {
+    vec4 origin_size;   // xyz: grid origin (world); w: voxel edge length
+    uvec4 grid;         // x: resolution N; y: flags (VOXEL_FLAG_*); z: raster viewport scale
+    vec4 tess;          // x: tessellation level scale; y: max tessellation level
+} voxel;
+
+layout(set = 2, binding = 1, r32ui) uniform coherent volatile uimage3D voxel_albedo;
+layout(set = 2, binding = 2, r32ui) uniform coherent volatile uimage3D voxel_normal;
+
+vec3 to_voxel_space(vec3 world) {
+    return (world - voxel.origin_size.xyz) / voxel.origin_size.w;
+}
+
+uint pack_rgba8(vec4 v) {
+    uvec4 u = uvec4(clamp(round(v), 0.0, 255.0));
+    return u.x | (u.y << 8) | (u.z << 16) | (u.w << 24);
+}
+
+vec4 unpack_rgba8(uint p) {
+    return vec4(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu), float(p >> 24));
+}
+
+// GLSL cannot pass images to functions: pick the texture by index.
+uint voxel_cas(uint which, ivec3 coord, uint expected, uint desired) {
+    return which == 0u ? imageAtomicCompSwap(voxel_albedo, coord, expected, desired)
+                       : imageAtomicCompSwap(voxel_normal, coord, expected, desired);
+}
+
+// Folds `value` (rgb in [0,1]) into the running average stored at `coord` of texture `which`
+// (0 albedo, 1 normal).
+void atomic_average(uint which, ivec3 coord, vec3 value) {
+    vec4 add = vec4(value * 255.0, 1.0);
+    uint desired = pack_rgba8(add);
+    uint expected = 0u;
+    for (int i = 0; i < CAS_MAX_ITERATIONS; i++) {
+        uint found = voxel_cas(which, coord, expected, desired);
+        if (found == expected) break;
+        expected = found;
+        vec4 avg = unpack_rgba8(found);
+        float n = avg.w;
+        if (n >= 255.0) break;  // count saturated: the average has converged
+        vec3 sum = avg.rgb * n + add.rgb;
+        desired = pack_rgba8(vec4(sum / (n + 1.0), n + 1.0));
+    }
+}
+
+// Writes one voxel sample (albedo and unit normal) if `coord` lies inside the grid.
+void write_voxel(ivec3 coord, vec3 albedo, vec3 normal) {
+    int n = int(voxel.grid.x);
+    if (any(lessThan(coord, ivec3(0))) || any(greaterThanEqual(coord, ivec3(n)))) return;
+    atomic_average(0u, coord, clamp(albedo, 0.0, 1.0));
+    atomic_average(1u, coord, normalize(normal) * 0.5 + 0.5);
+}
+
+#endif

@@ -1,0 +1,247 @@
+//! Exact voxel coverage on the CPU (rayon): a voxel is covered when its box intersects a
+//! triangle, by the separating-axis triangle/box test of Akenine-Möller (2001). Faces that lie
+//! exactly on voxel boundaries are judged fairly with two sets: *required* voxels meet the
+//! triangle when shrunk by `eps` voxels, *allowed* voxels meet it when grown by `eps`.
+//! A face lying exactly in a plane between two voxel layers requires neither layer alone, but
+//! it does require one of the two: each such cell gives a required *pair*.
+//! Recall = share of required voxels and pairs the GPU filled; precision = share of GPU voxels
+//! that are allowed; IoU = |GPU ∩ allowed| / |GPU ∪ required|.
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+/// The grid the reference works on: `n`³ cubes of edge `voxel` from `origin` (world units).
+#[derive(Clone, Copy, Debug)]
+pub struct RefGrid {
+    pub origin: Vec3,
+    pub voxel: f32,
+    pub n: u32,
+}
+
+/// Separating-axis test of a triangle against the box centred at the origin with half-size `h`.
+pub fn triangle_box_overlap(v: [DVec3; 3], h: DVec3) -> bool {
+    let [v0, v1, v2] = v;
+    // Box face normals: the triangle's bounding box against the box.
+    for a in 0..3 {
+        let (lo, hi) = (v0[a].min(v1[a]).min(v2[a]), v0[a].max(v1[a]).max(v2[a]));
+        if lo > h[a] || hi < -h[a] {
+            return false;
+        }
+    }
+    let e = [v1 - v0, v2 - v1, v0 - v2];
+    // Triangle normal.
+    let n = e[0].cross(e[1]);
+    let r = h.x * n.x.abs() + h.y * n.y.abs() + h.z * n.z.abs();
+    if n.dot(v0).abs() > r {
+        return false;
+    }
+    // The nine cross products of box axes and triangle edges.
+    for edge in e {
+        for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
+            let a = axis.cross(edge);
+            if a == DVec3::ZERO {
+                continue;
+            }
+            let p = [a.dot(v0), a.dot(v1), a.dot(v2)];
+            let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+            let r = h.x * a.x.abs() + h.y * a.y.abs() + h.z * a.z.abs();
+            if lo > r || hi < -r {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Exact coverage as two bit sets over the grid (index `x + n*(y + n*z)`).
+#[derive(Clone, Debug)]
+pub struct Coverage {
+    pub n: u32,
+    pub required: Vec<bool>,
+    pub allowed: Vec<bool>,
+    /// Voxel pairs on either side of a face that lies in a layer boundary: one must be filled.
+    pub pairs: Vec<(usize, usize)>,
+}
+
+/// If the triangle (voxel units) lies in a plane `axis = k` for an integer k, returns (axis, k).
+fn boundary_plane(p: &[DVec3; 3], eps: f64) -> Option<(usize, i64)> {
+    (0..3).find_map(|a| {
+        let k = p[0][a].round();
+        p.iter().all(|v| (v[a] - k).abs() <= eps * 0.5).then_some((a, k as i64))
+    })
+}
+
+impl RefGrid {
+    pub fn index(&self, x: u32, y: u32, z: u32) -> usize {
+        (x + self.n * (y + self.n * z)) as usize
+    }
+
+    /// Voxels each triangle touches; `eps` is the fairness margin in voxels (e.g. 0.001).
+    pub fn coverage(&self, triangles: &[[Vec3; 3]], eps: f64) -> Coverage {
+        let n = self.n as i64;
+        let len = (self.n as usize).pow(3);
+        let per_triangle: Vec<(Vec<(usize, bool)>, Vec<(usize, usize)>)> = triangles
+            .par_iter()
+            .map(|t| {
+                // Triangle in voxel units; skip non-finite input.
+                let p: [DVec3; 3] = t.map(|v| ((v - self.origin) / self.voxel).as_dvec3());
+                if p.iter().any(|v| !v.is_finite()) {
+                    return (Vec::new(), Vec::new());
+                }
+                let lo = p[0].min(p[1]).min(p[2]) - eps;
+                let hi = p[0].max(p[1]).max(p[2]) + eps;
+                let r = |f: f64| (f.floor() as i64).clamp(0, n - 1);
+                let (x0, y0, z0) = (r(lo.x), r(lo.y), r(lo.z));
+                let (x1, y1, z1) = (r(hi.x), r(hi.y), r(hi.z));
+                if hi.x < 0.0 || hi.y < 0.0 || hi.z < 0.0 || lo.x > n as f64 || lo.y > n as f64 || lo.z > n as f64 {
+                    return (Vec::new(), Vec::new());
+                }
+                let plane = boundary_plane(&p, eps);
+                let mut pairs = Vec::new();
+                let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+                let mut out = Vec::new();
+                for z in z0..=z1 {
+                    for y in y0..=y1 {
+                        for x in x0..=x1 {
+                            let c = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.5);
+                            // Cheap plane rejection before the full test.
+                            let reach = 0.5 + eps;
+                            let rn = reach * (normal.x.abs() + normal.y.abs() + normal.z.abs());
+                            if normal.dot(p[0] - c).abs() > rn {
+                                continue;
+                            }
+                            let v = p.map(|q| q - c);
+                            if !triangle_box_overlap(v, DVec3::splat(0.5 + eps)) {
+                                continue;
+                            }
+                            let required = triangle_box_overlap(v, DVec3::splat(0.5 - eps));
+                            let here = self.index(x as u32, y as u32, z as u32);
+                            out.push((here, required));
+                            // The face lies on this voxel's lower face: pair it with the voxel below,
+                            // when the face overlaps the cell's interior.
+                            if let Some((a, k)) = plane {
+                                let c = [x, y, z];
+                                if c[a] == k && k > 0 {
+                                    let mut h = DVec3::splat(0.5 - eps);
+                                    h[a] = eps;
+                                    let mut centre = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.5);
+                                    centre[a] = k as f64;
+                                    if triangle_box_overlap(p.map(|q| q - centre), h) {
+                                        let mut below = c;
+                                        below[a] -= 1;
+                                        pairs.push((self.index(below[0] as u32, below[1] as u32, below[2] as u32), here));
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                (out, pairs)
+            })
+            .collect();
+        let mut required = vec![false; len];
+        let mut allowed = vec![false; len];
+        let mut pairs = Vec::new();
+        for (list, p) in per_triangle {
+            for (i, req) in list {
+                allowed[i] = true;
+                required[i] |= req;
+            }
+            pairs.extend(p);
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        // A pair already satisfied by a required voxel adds nothing.
+        pairs.retain(|&(a, b)| !required[a] && !required[b]);
+        Coverage { n: self.n, required, allowed, pairs }
+    }
+}
+
+/// Accuracy of a voxelization against the exact coverage.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Accuracy {
+    pub recall: f64,
+    pub precision: f64,
+    pub iou: f64,
+    pub occupied: usize,
+    /// Required voxels plus required pairs.
+    pub required: usize,
+}
+
+impl Coverage {
+    pub fn accuracy(&self, occupied: &[bool]) -> Accuracy {
+        assert_eq!(occupied.len(), self.required.len(), "grids differ in size");
+        let (mut hit_req, mut req, mut occ, mut occ_allowed, mut union) = (0usize, 0usize, 0usize, 0usize, 0usize);
+        for i in 0..occupied.len() {
+            let (o, r, a) = (occupied[i], self.required[i], self.allowed[i]);
+            req += r as usize;
+            occ += o as usize;
+            hit_req += (o && r) as usize;
+            occ_allowed += (o && a) as usize;
+            union += (o || r) as usize;
+        }
+        let hit_pairs = self.pairs.iter().filter(|&&(a, b)| occupied[a] || occupied[b]).count();
+        let ratio = |a: usize, b: usize| if b == 0 { 1.0 } else { a as f64 / b as f64 };
+        Accuracy {
+            recall: ratio(hit_req + hit_pairs, req + self.pairs.len()),
+            precision: ratio(occ_allowed, occ),
+            iou: ratio(occ_allowed, union),
+            occupied: occ,
+            required: req + self.pairs.len(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(n: u32) -> RefGrid {
+        RefGrid { origin: Vec3::ZERO, voxel: 1.0, n }
+    }
+
+    #[test]
+    fn sat_agrees_with_simple_cases() {
+        let h = DVec3::splat(0.5);
+        let tri = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| [DVec3::from(a), DVec3::from(b), DVec3::from(c)];
+        assert!(triangle_box_overlap(tri([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), h));
+        assert!(!triangle_box_overlap(tri([2.0, 2.0, 2.0], [3.0, 2.0, 2.0], [2.0, 3.0, 2.0]), h));
+        // Passes beside the box corner: bounding boxes overlap, an edge axis separates.
+        assert!(!triangle_box_overlap(tri([0.9, -0.2, 0.0], [1.5, 0.6, 0.0], [1.5, -0.2, 0.0]), h));
+        // Large triangle whose plane cuts through the box.
+        assert!(triangle_box_overlap(tri([-5.0, -5.0, 0.2], [5.0, -5.0, 0.2], [0.0, 5.0, -0.2]), h));
+    }
+
+    #[test]
+    fn axis_aligned_square_on_a_voxel_boundary_is_fair() {
+        // The square z = 2 lies on the face between layers 1 and 2: neither layer is required,
+        // both are allowed.
+        let g = grid(4);
+        let q = [Vec3::new(0.2, 0.2, 2.0), Vec3::new(3.8, 0.2, 2.0), Vec3::new(3.8, 3.8, 2.0)];
+        let c = g.coverage(&[q], 1e-3);
+        assert_eq!(c.required.iter().filter(|&&r| r).count(), 0);
+        // 10 cells under the triangle plus 3 touched only at a corner by the hypotenuse.
+        assert_eq!(c.allowed.iter().filter(|&&r| r).count(), 2 * 13);
+        // ...but each of the 10 cells under it requires one of its two layers.
+        assert_eq!(c.pairs.len(), 10);
+        let mut occupied = vec![false; 64];
+        for &(below, _) in &c.pairs {
+            occupied[below] = true;
+        }
+        assert_eq!(c.accuracy(&occupied).recall, 1.0);
+        assert_eq!(c.accuracy(&vec![false; 64]).recall, 0.0);
+        // Inside a layer, every voxel under the triangle is required.
+        let q = [Vec3::new(0.2, 0.2, 2.5), Vec3::new(3.8, 0.2, 2.5), Vec3::new(3.8, 3.8, 2.5)];
+        let c = g.coverage(&[q], 1e-3);
+        assert_eq!(c.required.iter().filter(|&&r| r).count(), 10);
+    }
+
+    #[test]
+    fn accuracy_figures() {
+        let c = Coverage { n: 1, required: vec![true, true, false, false], allowed: vec![true, true, true, false], pairs: vec![] };
+        let a = c.accuracy(&[true, false, true, true]);
+        assert!((a.recall - 0.5).abs() < 1e-12);
+        assert!((a.precision - 2.0 / 3.0).abs() < 1e-12);
+        assert!((a.iou - 2.0 / 4.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,100 @@
+//! Voxel debug view (the thesis' Fig. 4.1/4.4): occupied voxels drawn as instanced cubes from
+//! the scene camera, coloured by their averaged albedo, headlessly into an 8-bit image.
+
+use std::sync::Arc;
+
+use ash::vk;
+use glam::{Mat4, Vec3, Vec4};
+
+use super::{frame::depth_range, FrameImages};
+use crate::error::Result;
+use crate::gpu::{self, shaders, Attachments, Buffer, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage, VertexLayout};
+use crate::scene::Scene;
+use crate::voxel::headless::VoxelRun;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct CubePush {
+    view_proj: Mat4,
+    origin_size: Vec4,
+    light_dir: Vec4,
+}
+
+const ATTRS: [vk::VertexInputAttributeDescription; 2] = [
+    vk::VertexInputAttributeDescription { location: 0, binding: 0, format: vk::Format::R32_UINT, offset: 0 },
+    vk::VertexInputAttributeDescription { location: 1, binding: 0, format: vk::Format::R32_UINT, offset: 4 },
+];
+
+/// Renders the occupied voxels of `run` as cubes seen from the scene's camera.
+pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Result<FrameImages> {
+    let g = &run.grid;
+    let n = g.resolution;
+    let mut instances: Vec<[u32; 2]> = Vec::new();
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let v = run.albedo[g.index(x, y, z)];
+                if v >> 24 != 0 {
+                    instances.push([x | (y << 10) | (z << 20), v]);
+                }
+            }
+        }
+    }
+    let cam = &scene.camera;
+    let (w, h) = (cam.width, cam.height);
+    let color_format = vk::Format::R8G8B8A8_UNORM;
+    let color = Image::new(ctx, "voxel view", ImageDesc::d2(color_format, w, h, vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC))?;
+    let depth_format = vk::Format::D32_SFLOAT;
+    let depth = Image::new(ctx, "voxel view depth", ImageDesc::d2(depth_format, w, h, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT))?;
+    let buffer = Buffer::from_slice(ctx, "voxel instances", vk::BufferUsageFlags::VERTEX_BUFFER, if instances.is_empty() { &[[0u32; 2]] } else { &instances })?;
+
+    let mut desc = GraphicsDesc::new(
+        "voxel view",
+        vec![
+            Stage::new(vk::ShaderStageFlags::VERTEX, shaders::DEBUG_VOXEL_CUBES_VERT),
+            Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::DEBUG_VOXEL_CUBES_FRAG),
+        ],
+    );
+    desc.push_constant_size = std::mem::size_of::<CubePush>() as u32;
+    desc.vertex = Some(VertexLayout { stride: 8, attributes: &ATTRS });
+    desc.instanced = true;
+    desc.depth_format = depth_format;
+    desc.depth_test = true;
+    desc.depth_write = true;
+    desc.color_formats = vec![color_format];
+    let pipeline = Pipeline::graphics(ctx, &desc)?;
+
+    let (near, far) = depth_range(cam.eye, &scene.mesh.bounds);
+    let light = (cam.eye - cam.target).normalize() + Vec3::new(0.3, 0.6, 0.0);
+    let push = CubePush {
+        view_proj: cam.proj(near, far) * cam.view(),
+        origin_size: g.origin.extend(g.voxel),
+        light_dir: light.normalize().extend(0.0),
+    };
+    let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
+    let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
+    let depth_rw = (
+        vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
+        vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
+    );
+    ctx.submit_and_wait("voxel view", |cmd| {
+        gpu::image_barrier(ctx, cmd, &color, vk::ImageLayout::UNDEFINED, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, none, color_w);
+        gpu::image_barrier(ctx, cmd, &depth, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, none, depth_rw);
+        let att = Attachments {
+            color: Some((&color, vk::AttachmentLoadOp::CLEAR, [0.05, 0.05, 0.07, 1.0])),
+            depth: Some((&depth, vk::AttachmentLoadOp::CLEAR)),
+            width: w,
+            height: h,
+        };
+        gpu::render(ctx, cmd, att, || {
+            pipeline.bind(cmd, &[]);
+            pipeline.push(cmd, &push);
+            unsafe {
+                ctx.device.cmd_bind_vertex_buffers(cmd, 0, &[buffer.raw], &[0]);
+                ctx.device.cmd_draw(cmd, 36, instances.len() as u32, 0, 0);
+            }
+        });
+    })?;
+    let ldr = gpu::read_image(ctx, &color, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, 0)?;
+    Ok(FrameImages { width: w, height: h, hdr: Vec::new(), ldr })
+}

@@ -1,0 +1,66 @@
+//! Rasterized voxelizer (Freed 2018 §4.1.1): the geometry shader projects each triangle along
+//! its dominant axis onto an attachment-less N×N framebuffer; coverage is made conservative by
+//! 4× MSAA (the thesis' method), by hardware conservative rasterization where offered, or not
+//! at all; the fragment shader writes voxels with atomic averaging.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::{flag, params_for, voxel_set, Coverage, VoxelVolume};
+use crate::config;
+use crate::error::Result;
+use crate::gpu::{self, shaders, Attachments, Buffer, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
+use crate::render::scene_gpu::{vertex_layout_untangented, SceneGpu};
+
+pub struct RasterVoxelizer {
+    ctx: Arc<Context>,
+    pipeline: Pipeline,
+    set: DescriptorSet,
+    _params: Buffer,
+    size: u32,
+}
+
+impl RasterVoxelizer {
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene_gpu: &SceneGpu,
+        volume: &VoxelVolume,
+        coverage: Coverage,
+        viewport_scale: u32,
+        depth_span: bool,
+    ) -> Result<Self> {
+        let viewport_scale = viewport_scale.clamp(1, 8);
+        let size = volume.grid.resolution * viewport_scale;
+        let max = ctx.info.limits.max_framebuffer_width.min(ctx.info.limits.max_framebuffer_height);
+        if size > max {
+            return Err(crate::Error::param("viewport-scale", format!("{size} pixels exceed the device's framebuffer limit {max}")));
+        }
+        let params = params_for(&volume.grid, flag(depth_span, config::VOXEL_FLAG_DEPTH_SPAN), viewport_scale, 1.0, 1.0);
+        let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
+        let mut desc = GraphicsDesc::new(
+            "raster voxelizer",
+            vec![
+                Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
+                Stage::new(vk::ShaderStageFlags::GEOMETRY, shaders::VOXELIZE_RASTER_GEOM),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG),
+            ],
+        );
+        desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
+        desc.push_constant_size = 4;
+        desc.vertex = Some(vertex_layout_untangented());
+        desc.samples = if coverage == Coverage::Msaa { vk::SampleCountFlags::TYPE_4 } else { vk::SampleCountFlags::TYPE_1 };
+        desc.conservative = coverage == Coverage::Hardware;
+        let pipeline = Pipeline::graphics(ctx, &desc)?;
+        Ok(RasterVoxelizer { ctx: ctx.clone(), pipeline, set, _params: params_buffer, size })
+    }
+
+    pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, _volume: &VoxelVolume) {
+        let att = Attachments { color: None, depth: None, width: self.size, height: self.size };
+        gpu::render(&self.ctx, cmd, att, || {
+            self.pipeline.bind(cmd, &[scene_gpu.set.raw]);
+            self.pipeline.bind_set(cmd, 2, self.set.raw);
+            scene_gpu.draw(cmd, self.pipeline.layout, true);
+        });
+    }
+}

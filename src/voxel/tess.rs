@@ -1,0 +1,82 @@
+//! Tessellation voxelizer (Freed 2018 §4.1.2): 3-control-point patches; the control shader
+//! sets levels from edge lengths and the largest altitude against the voxel size, the
+//! evaluation shader (point mode) writes one voxel per generated vertex. Triangles whose
+//! levels would pass the device limit are subdivided when the scene loads.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::subdivide::subdivide_for_tessellation;
+use super::{flag, params_for, voxel_set, VoxelVolume};
+use crate::config;
+use crate::error::Result;
+use crate::gpu::{self, shaders, Attachments, Buffer, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
+use crate::render::scene_gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
+use crate::scene::Scene;
+
+pub struct TessVoxelizer {
+    ctx: Arc<Context>,
+    pipeline: Pipeline,
+    set: DescriptorSet,
+    _params: Buffer,
+    /// The scene mesh with over-large triangles split (or as loaded, without subdivision).
+    mesh: MeshBuffers,
+    split: usize,
+    subdivide: bool,
+}
+
+impl TessVoxelizer {
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &Scene,
+        scene_gpu: &SceneGpu,
+        volume: &VoxelVolume,
+        level_scale: f32,
+        subdivide: bool,
+        min_level: bool,
+    ) -> Result<Self> {
+        let max_level = ctx.info.limits.max_tessellation_generation_level as f32;
+        let (mesh, split) = if subdivide {
+            let (m, split) = subdivide_for_tessellation(&scene.mesh, &volume.grid, level_scale, max_level);
+            (MeshBuffers::new(ctx, "tess voxelizer mesh", &m)?, split)
+        } else {
+            (MeshBuffers::new(ctx, "tess voxelizer mesh", &scene.mesh)?, 0)
+        };
+        let params = params_for(&volume.grid, flag(min_level, config::VOXEL_FLAG_MIN_LEVEL), 1, level_scale, max_level);
+        let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
+        let mut desc = GraphicsDesc::new(
+            "tess voxelizer",
+            vec![
+                Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
+                Stage::new(vk::ShaderStageFlags::TESSELLATION_CONTROL, shaders::VOXELIZE_TESS_TESC),
+                Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE),
+            ],
+        );
+        desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
+        desc.push_constant_size = 4;
+        desc.vertex = Some(vertex_layout_untangented());
+        desc.topology = vk::PrimitiveTopology::PATCH_LIST;
+        desc.patch_control_points = 3;
+        desc.rasterizer_discard = true;
+        let pipeline = Pipeline::graphics(ctx, &desc)?;
+        Ok(TessVoxelizer { ctx: ctx.clone(), pipeline, set, _params: params_buffer, mesh, split, subdivide })
+    }
+
+    pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu) {
+        let att = Attachments { color: None, depth: None, width: 1, height: 1 };
+        gpu::render(&self.ctx, cmd, att, || {
+            self.pipeline.bind(cmd, &[scene_gpu.set.raw]);
+            self.pipeline.bind_set(cmd, 2, self.set.raw);
+            self.mesh.draw(cmd, self.pipeline.layout, Some(&scene_gpu.material_sets));
+        });
+    }
+
+    pub fn notes(&self) -> Vec<String> {
+        if self.subdivide {
+            vec![format!("tessellation: subdivided {} triangle(s) whose levels passed the device limit", self.split)]
+        } else {
+            vec!["tessellation: subdivision off; triangles past the level limit leave holes".into()]
+        }
+    }
+}

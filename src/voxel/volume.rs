@@ -1,0 +1,114 @@
+//! The voxel textures the voxelizers write: albedo+opacity and normal, each RGBA8 packed in an
+//! R32UI 3D storage image (atomic running average, count in the alpha byte). Cleared and
+//! rebuilt every frame.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::VoxelGrid;
+use crate::error::{Error, Result};
+use crate::gpu::{self, Context, Image, ImageDesc};
+
+pub const VOXEL_FORMAT: vk::Format = vk::Format::R32_UINT;
+
+pub struct VoxelVolume {
+    ctx: Arc<Context>,
+    pub grid: VoxelGrid,
+    pub albedo: Image,
+    pub normal: Image,
+}
+
+/// Stages and accesses of the voxelizers' writes, for barriers.
+pub fn voxel_write_scope() -> (vk::PipelineStageFlags2, vk::AccessFlags2) {
+    (
+        vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER | vk::PipelineStageFlags2::FRAGMENT_SHADER,
+        vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
+    )
+}
+
+fn largest_device_heap(ctx: &Context) -> u64 {
+    let props = unsafe { ctx.instance.get_physical_device_memory_properties(ctx.physical) };
+    props.memory_heaps[..props.memory_heap_count as usize]
+        .iter()
+        .filter(|h| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+        .map(|h| h.size)
+        .max()
+        .unwrap_or(0)
+}
+
+impl VoxelVolume {
+    pub fn new(ctx: &Arc<Context>, grid: VoxelGrid) -> Result<Self> {
+        let need = grid.memory_bytes();
+        let heap = largest_device_heap(ctx);
+        if need > heap / 2 {
+            return Err(Error::param(
+                "res",
+                format!(
+                    "a {}³ grid needs {} MiB of GPU memory; the device's largest heap has {} MiB",
+                    grid.resolution,
+                    need >> 20,
+                    heap >> 20
+                ),
+            ));
+        }
+        let usage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
+        let desc = ImageDesc::d3(VOXEL_FORMAT, grid.resolution, usage);
+        Ok(VoxelVolume {
+            ctx: ctx.clone(),
+            grid,
+            albedo: Image::new(ctx, "voxel albedo", desc)?,
+            normal: Image::new(ctx, "voxel normal", desc)?,
+        })
+    }
+
+    /// Clears both textures to zero (empty) and makes them ready for the voxelizers' atomics.
+    pub fn record_clear(&self, cmd: vk::CommandBuffer) {
+        let ctx = &self.ctx;
+        let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
+        let clear_w = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
+        for img in [&self.albedo, &self.normal] {
+            gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, any, clear_w);
+            unsafe {
+                ctx.device.cmd_clear_color_image(
+                    cmd,
+                    img.raw,
+                    vk::ImageLayout::GENERAL,
+                    &vk::ClearColorValue { uint32: [0; 4] },
+                    &[img.range()],
+                )
+            };
+        }
+        gpu::memory_barrier(ctx, cmd, clear_w, voxel_write_scope());
+    }
+
+    /// Makes the voxelizers' writes visible to the compute and transfer work that follows.
+    pub fn record_finish(&self, cmd: vk::CommandBuffer) {
+        let after = (
+            vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER | vk::PipelineStageFlags2::ALL_GRAPHICS,
+            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::TRANSFER_READ,
+        );
+        gpu::memory_barrier(&self.ctx, cmd, voxel_write_scope(), after);
+    }
+
+    /// Reads back the packed albedo texture (RGBA8 per voxel; alpha = sample count, 0 = empty).
+    pub fn read_albedo(&self) -> Result<Vec<u32>> {
+        let bytes = gpu::read_image(&self.ctx, &self.albedo, vk::ImageLayout::GENERAL, 0)?;
+        Ok(bytemuck::cast_slice(&bytes).to_vec())
+    }
+
+    pub fn read_normal(&self) -> Result<Vec<u32>> {
+        let bytes = gpu::read_image(&self.ctx, &self.normal, vk::ImageLayout::GENERAL, 0)?;
+        Ok(bytemuck::cast_slice(&bytes).to_vec())
+    }
+}
+
+/// Occupancy from a read-back packed texture: a voxel is filled when its count is non-zero.
+pub fn occupancy(packed: &[u32]) -> Vec<bool> {
+    packed.iter().map(|&v| v >> 24 != 0).collect()
+}
+
+/// The RGB of a packed voxel, in [0, 1].
+pub fn unpack_rgb(v: u32) -> [f32; 3] {
+    [(v & 0xff) as f32 / 255.0, ((v >> 8) & 0xff) as f32 / 255.0, ((v >> 16) & 0xff) as f32 / 255.0]
+}
