@@ -1,16 +1,19 @@
 #version 460
 // Rasterized voxelizer, fragment stage (Freed 2018 §4.1.1): maps the fragment back to its
 // voxel (undoing the dominant-axis swizzle) and writes it with atomic averaging. With
-// VOXEL_FLAG_DEPTH_SPAN it writes every depth layer the triangle's plane crosses within the
-// pixel (clamped to the triangle's depth range), which a slanted face needs within one pixel
-// column; without, only the layer at the pixel centre's depth (the thesis' method).
+// VOXEL_FLAG_DEPTH_SPAN it considers every depth layer the triangle's plane crosses within
+// the pixel (a slanted face can cross into the next layer within one pixel column) and
+// writes those whose voxel the triangle really touches (triangle/box test); without, only
+// the layer at the pixel centre's depth (the thesis' method).
 #include "frame.glsl"
 #include "voxel.glsl"
+#include "tribox.glsl"
 
 layout(location = 0) in vec3 in_normal;
 layout(location = 1) in vec2 in_uv;
 layout(location = 2) flat in uint in_axis;
 layout(location = 3) flat in vec4 in_depth;
+layout(location = 4) flat in vec3 in_tri[3];
 
 vec3 unswizzle(vec3 v, uint axis) {
     return axis == 0u ? v.zxy : (axis == 1u ? v.yzx : v);
@@ -24,16 +27,19 @@ void main() {
     Material m = materials[push.material];
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
-    float lo = z, hi = z;
-    if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) != 0u) {
-        // Half a pixel (in voxel units) in x and y around the centre.
-        float reach = 0.5 / scale * (abs(in_depth.z) + abs(in_depth.w));
-        lo = max(z - reach, in_depth.x);
-        hi = min(z + reach, in_depth.y);
-        if (lo > hi) { lo = z; hi = z; }
+    if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) == 0u) {
+        write_voxel(ivec3(unswizzle(vec3(xy, floor(z)), in_axis)), albedo, in_normal);
+        return;
     }
-    int first = int(floor(lo)), last = min(int(floor(hi)), int(floor(lo)) + 3);
+    // The plane's depth over the whole voxel column cell (dominant axis: slopes are <= 1).
+    float reach = 0.5 * (abs(in_depth.z) + abs(in_depth.w));
+    float zc = z + dot(in_depth.zw, xy + 0.5 - gl_FragCoord.xy / scale);
+    int first = int(floor(max(zc - reach, in_depth.x)));
+    int last = min(int(floor(min(zc + reach, in_depth.y))), first + 3);
     for (int layer = first; layer <= last; layer++) {
-        write_voxel(ivec3(unswizzle(vec3(xy, float(layer)), in_axis)), albedo, in_normal);
+        vec3 c = vec3(xy, float(layer)) + 0.5;
+        if (triangle_box_overlap(in_tri[0] - c, in_tri[1] - c, in_tri[2] - c, vec3(0.5))) {
+            write_voxel(ivec3(unswizzle(vec3(xy, float(layer)), in_axis)), albedo, in_normal);
+        }
     }
 }

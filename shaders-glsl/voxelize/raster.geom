@@ -15,8 +15,10 @@ layout(location = 2) in vec2 in_uv[];
 layout(location = 0) out vec3 out_normal;
 layout(location = 1) out vec2 out_uv;
 layout(location = 2) flat out uint out_axis;
-// Depth range of the triangle (voxel units) and the plane's depth slope per pixel.
+// Depth range of the triangle (voxel units) and the plane's depth slope per voxel step.
 layout(location = 3) flat out vec4 out_depth;
+// The triangle in swizzled voxel space, for the fragment stage's exact voxel test.
+layout(location = 4) flat out vec3 out_tri[3];
 
 // Rotates voxel coordinates so the dominant axis becomes z.
 vec3 swizzle(vec3 v, uint axis) {
@@ -42,6 +44,7 @@ void main() {
         out_uv = in_uv[i];
         out_axis = axis;
         out_depth = vec4(zmin, zmax, slope);
+        out_tri = q;
         EmitVertex();
     }
     EndPrimitive();

@@ -321,6 +321,42 @@ impl Scene {
         Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light: default_light(), settings, warnings })
     }
 
+    /// A scene made in code: `triangles` with one flat material each (by index into
+    /// `albedos`), framed by the default camera and lit by the default light.
+    pub fn from_triangles(triangles: &[([Vec3; 3], usize)], albedos: &[Vec3]) -> Scene {
+        let mut materials: Vec<Material> =
+            albedos.iter().map(|&a| Material { albedo: a, specular: Vec3::ZERO, ..Material::default_grey() }).collect();
+        if materials.is_empty() {
+            materials.push(Material::default_grey());
+        }
+        let mut mesh = Mesh::default();
+        for (m, _) in materials.iter().enumerate() {
+            let first = mesh.indices.len() as u32;
+            for (tri, _) in triangles.iter().filter(|(_, tm)| (*tm).min(materials.len() - 1) == m) {
+                let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
+                for p in tri {
+                    mesh.indices.push(mesh.vertices.len() as u32);
+                    mesh.vertices.push(Vertex { pos: (*p).into(), normal: n.into(), ..Default::default() });
+                    mesh.bounds.grow(*p);
+                }
+            }
+            let count = mesh.indices.len() as u32 - first;
+            if count > 0 {
+                mesh.draws.push(Draw { first_index: first, index_count: count, material: m as u32 });
+            }
+        }
+        Scene {
+            source: PathBuf::from("<code>"),
+            camera: frame_bounds(&mesh.bounds),
+            mesh,
+            materials,
+            textures: Vec::new(),
+            light: default_light(),
+            settings: Settings { voxel_resolution: 64, shadow_resolution: 1024 },
+            warnings: Vec::new(),
+        }
+    }
+
     /// Renders at this size instead of the scene's.
     pub fn set_size(&mut self, width: Option<u32>, height: Option<u32>) -> Result<()> {
         let (w, h) = (width.unwrap_or(self.camera.width), height.unwrap_or(self.camera.height));
