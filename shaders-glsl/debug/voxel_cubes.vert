@@ -12,6 +12,7 @@ layout(location = 0) in uint in_coord;  // x | y << 10 | z << 20
 layout(location = 1) in uint in_color;  // packed RGBA8
 
 layout(location = 0) out vec3 out_color;
+layout(location = 1) out vec2 out_face_uv;
 
 const vec3 FACE_NORMALS[6] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
 
@@ -30,5 +31,6 @@ void main() {
     vec3 world = pc.origin_size.xyz + (vec3(c) + p) * pc.origin_size.w;
     gl_Position = pc.view_proj * vec4(world, 1.0);
     vec3 albedo = vec3(float(in_color & 255u), float((in_color >> 8) & 255u), float((in_color >> 16) & 255u)) / 255.0;
-    out_color = albedo * (0.35 + 0.65 * max(dot(n, pc.light_dir.xyz), 0.0));
+    out_color = albedo * (0.3 + 0.7 * max(dot(n, pc.light_dir.xyz), 0.0));
+    out_face_uv = uv;
 }

@@ -65,7 +65,7 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
     let pipeline = Pipeline::graphics(ctx, &desc)?;
 
     let (near, far) = depth_range(cam.eye, &scene.mesh.bounds);
-    let light = (cam.eye - cam.target).normalize() + Vec3::new(0.3, 0.6, 0.0);
+    let light = (cam.eye - cam.target).normalize() * 0.6 + Vec3::new(0.45, 0.75, 0.0);
     let push = CubePush {
         view_proj: cam.proj(near, far) * cam.view(),
         origin_size: g.origin.extend(g.voxel),
