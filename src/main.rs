@@ -7,7 +7,7 @@ use anyhow::{bail, Context as _, Result};
 use clap::{Args, Parser, Subcommand};
 
 use vct::gpu::{Context, ContextOptions, Feature, Timing};
-use vct::render::Renderer;
+use vct::render::{RenderOptions, Renderer, View};
 use vct::reference::coverage::RefGrid;
 use vct::scene::Scene;
 use vct::voxel::{headless, Coverage, VoxelizeMethod};
@@ -139,6 +139,17 @@ struct RenderArgs {
     #[arg(long)]
     height: Option<u32>,
     #[command(flatten)]
+    method: MethodArgs,
+    /// What to show: full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL.
+    #[arg(long, default_value = "full")]
+    view: View,
+    /// Direct light only: skip cone tracing.
+    #[arg(long)]
+    no_gi: bool,
+    /// Write the per-pass GPU times as JSON.
+    #[arg(long)]
+    timings: Option<PathBuf>,
+    #[command(flatten)]
     gpu: GpuArgs,
 }
 
@@ -179,10 +190,27 @@ fn render(args: RenderArgs) -> Result<()> {
     let mut scene = load_scene(args.scene.as_deref())?;
     scene.set_size(args.width, args.height)?;
     let ctx = open_device(&args.gpu)?;
-    let renderer = Renderer::new(&ctx, scene).context("creating the renderer")?;
+    let options = RenderOptions { method: args.method.method()?, resolution: args.method.res, view: args.view, gi: !args.no_gi };
+    let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
+    for n in &renderer.notes {
+        println!("note: {n}");
+    }
     let timings = renderer.render().context("rendering")?;
     let frame = renderer.read_frame()?;
     print_timings(&timings);
+    if let Some(path) = &args.timings {
+        let json = serde_json::json!({
+            "device": ctx.info.name,
+            "driver": ctx.info.driver,
+            "voxelizer": options.method.label(),
+            "resolution": renderer.voxels.grid.resolution,
+            "width": frame.width,
+            "height": frame.height,
+            "passes": timings,
+        });
+        std::fs::write(path, serde_json::to_string_pretty(&json)?).with_context(|| format!("writing {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
     vct::output::write_png(&args.out, &frame)?;
     println!("wrote {}", args.out.display());
     if let Some(exr) = &args.exr {

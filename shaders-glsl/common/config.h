@@ -28,4 +28,20 @@
 // Rasterized path: write every voxel layer the triangle's plane spans over the pixel.
 #define VOXEL_FLAG_DEPTH_SPAN 2
 
+// Global illumination (Freed 2018 §4.3-4.5).
+// Diffuse cones: full aperture in degrees (one along the normal, four tilted 45 degrees).
+#define DIFFUSE_CONE_APERTURE_DEG 45.0
+#define DIFFUSE_CONE_TILT_DEG 45.0
+// Narrowest specular cone (full aperture, radians): 0.1 pi roughness, never below this.
+#define MIN_SPECULAR_APERTURE 0.02
+// Debug views (FrameUniforms.view.x).
+#define VIEW_FULL 0
+#define VIEW_DIRECT 1
+#define VIEW_INDIRECT 2
+#define VIEW_DIFFUSE 3
+#define VIEW_SPECULAR 4
+#define VIEW_AO 5
+#define VIEW_VOXELS 6
+#define VIEW_RADIANCE 7
+
 #endif

@@ -7,13 +7,24 @@
 layout(set = 0, binding = 0) uniform FrameUniforms {
     mat4 view_proj;
     mat4 light_view_proj;
+    mat4 light_inv_view_proj;
+    mat4 inv_view_proj;
     vec4 camera_pos;    // xyz
     vec4 light_pos;     // xyz: spot position; w: LIGHT_SPOT or LIGHT_DIRECTIONAL
     vec4 light_dir;     // xyz: the way light travels (unit)
     vec4 light_color;   // rgb: spot intensity (W/sr) or directional irradiance (W/m^2)
     vec4 light_cone;    // x: inner half-angle, y: outer half-angle (radians); z: shadow texel size (uv)
     vec4 viewport;      // xy: render size in pixels
+    vec4 voxel_origin;  // xyz: voxel grid origin (world); w: voxel size
+    vec4 voxel_grid;    // x: resolution N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
+    vec4 cone;          // x: max steps; y: bias along the normal (voxels); z: start height (voxels); w: LOD offset
+    vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0)
 } frame;
+
+// World position to normalized voxel-texture coordinates [0, 1]^3.
+vec3 world_to_uvw(vec3 p) {
+    return (p - frame.voxel_origin.xyz) / (frame.voxel_origin.w * frame.voxel_grid.x);
+}
 
 struct Material {
     vec4 albedo;    // rgb: linear albedo; a: metallic

@@ -13,6 +13,8 @@ layout(set = 2, binding = 0) uniform VoxelParams {
 
 layout(set = 2, binding = 1, r32ui) uniform coherent volatile uimage3D voxel_albedo;
 layout(set = 2, binding = 2, r32ui) uniform coherent volatile uimage3D voxel_normal;
+// Emitted radiance, RGB9E5 (atomic max: exact for a voxel with one emissive material).
+layout(set = 2, binding = 3, r32ui) uniform coherent volatile uimage3D voxel_emission;
 
 vec3 to_voxel_space(vec3 world) {
     return (world - voxel.origin_size.xyz) / voxel.origin_size.w;
@@ -51,12 +53,15 @@ void atomic_average(uint which, ivec3 coord, vec3 value) {
     }
 }
 
-// Writes one voxel sample (albedo and unit normal) if `coord` lies inside the grid.
-void write_voxel(ivec3 coord, vec3 albedo, vec3 normal) {
+#include "rgb9e5.glsl"
+
+// Writes one voxel sample (albedo, unit normal, emission) if `coord` lies inside the grid.
+void write_voxel(ivec3 coord, vec3 albedo, vec3 normal, vec3 emission) {
     int n = int(voxel.grid.x);
     if (any(lessThan(coord, ivec3(0))) || any(greaterThanEqual(coord, ivec3(n)))) return;
     atomic_average(0u, coord, clamp(albedo, 0.0, 1.0));
     atomic_average(1u, coord, normalize(normal) * 0.5 + 0.5);
+    if (max(emission.r, max(emission.g, emission.b)) > 0.0) imageAtomicMax(voxel_emission, coord, encode_rgb9e5(emission));
 }
 
 #endif

@@ -1,12 +1,16 @@
 #version 460
-// Forward shading (Freed 2018 §4.5, Algorithm 3 without the cone-traced part): emission plus
-// Cook-Torrance direct light from the scene's light, shadowed by 3x3 PCF over the shadow map.
-// Writes linear radiance; tone mapping is a separate pass.
+// Final shading (Freed 2018 §4.5, Algorithm 3), forward after a depth prepass: emission plus
+// Cook-Torrance direct light (3x3 PCF shadow) plus indirect light by voxel cone tracing —
+// five diffuse cones (45 degrees, one along the normal, four tilted 45 degrees, weighted by
+// their cosine) and one specular cone along the reflection (aperture 0.1 pi roughness).
+// Diffuse-cone occlusion gives ambient occlusion. Writes linear radiance (or a debug view).
 #include "frame.glsl"
 #include "brdf.glsl"
 #include "light.glsl"
+#include "cone.glsl"
 
 layout(set = 2, binding = 0) uniform sampler2DShadow shadow_map;
+layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
@@ -32,6 +36,7 @@ void main() {
     Material m = materials[push.material];
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
+    float roughness = m.emissive.a, metallic = m.albedo.a;
     vec3 v = normalize(frame.camera_pos.xyz - in_world);
     vec3 n = normalize(in_normal);
     if (m.tex.y == HAS_TEXTURE) {
@@ -47,7 +52,48 @@ void main() {
     vec3 irradiance = light_incident(in_world, l);
     vec3 direct = vec3(0.0);
     if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
-        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, m.emissive.a, m.albedo.a) * shadow_factor(in_world);
+        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(in_world);
     }
-    out_radiance = vec4(m.emissive.rgb + direct, 1.0);
+
+    vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+    float occlusion = 0.0;
+    if (frame.view.z > 0.5) {
+        ConeParams p = ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_grid.x);
+        vec3 uvw = world_to_uvw(in_world);
+        vec3 t, b;
+        tangent_frame(n, t, b);
+        float tilt = radians(DIFFUSE_CONE_TILT_DEG), aperture = radians(DIFFUSE_CONE_APERTURE_DEG);
+        // Cosine weights: the irradiance integral weights each direction by n.dir.
+        float w_side = cos(tilt), w_sum = 1.0 + 4.0 * w_side;
+        vec3 dirs[5] = vec3[](n, n * cos(tilt) + t * sin(tilt), n * cos(tilt) - t * sin(tilt),
+                              n * cos(tilt) + b * sin(tilt), n * cos(tilt) - b * sin(tilt));
+        vec3 gathered = vec3(0.0);
+        for (int i = 0; i < 5; i++) {
+            float w = (i == 0 ? 1.0 : w_side) / w_sum;
+            vec4 c = trace_cone(radiance_volume, uvw, n, normalize(dirs[i]), aperture, p);
+            gathered += w * c.rgb;
+            occlusion += w * c.a;
+        }
+        // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
+        diffuse = albedo * (1.0 - metallic) * gathered;
+        vec3 f0 = mix(m.specular.rgb, albedo, metallic);
+        if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
+            vec3 r = reflect(-v, n);
+            float spec_aperture = max(0.1 * PI * roughness, MIN_SPECULAR_APERTURE);
+            vec4 c = trace_cone(radiance_volume, uvw, n, r, spec_aperture, p);
+            specular = fresnel_schlick(f0, dot(n, v)) * c.rgb;
+        }
+    }
+
+    vec3 indirect = diffuse + specular;
+    vec3 result;
+    switch (uint(frame.view.x)) {
+        case VIEW_DIRECT: result = m.emissive.rgb + direct; break;
+        case VIEW_INDIRECT: result = indirect; break;
+        case VIEW_DIFFUSE: result = diffuse; break;
+        case VIEW_SPECULAR: result = specular; break;
+        case VIEW_AO: result = vec3(1.0 - occlusion); break;
+        default: result = m.emissive.rgb + direct + indirect; break;
+    }
+    out_radiance = vec4(result, 1.0);
 }

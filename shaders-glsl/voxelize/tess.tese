@@ -20,6 +20,6 @@ void main() {
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= textureLod(albedo_texture, uv, 0.0).rgb;
     if (dot(normal, normal) < 1e-12) normal = vec3(0.0, 1.0, 0.0);
-    write_voxel(ivec3(floor(to_voxel_space(world))), albedo, normal);
+    write_voxel(ivec3(floor(to_voxel_space(world))), albedo, normal, m.emissive.rgb);
     gl_Position = vec4(world, 1.0);
 }

@@ -5,19 +5,93 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::config;
-use crate::scene::{flip_y, Aabb, Camera, Light};
+use crate::scene::{flip_y, Aabb, Camera, GiSettings, Light};
+use crate::voxel::VoxelGrid;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
     pub view_proj: Mat4,
     pub light_view_proj: Mat4,
+    pub light_inv_view_proj: Mat4,
+    pub inv_view_proj: Mat4,
     pub camera_pos: Vec4,
     pub light_pos: Vec4,
     pub light_dir: Vec4,
     pub light_color: Vec4,
     pub light_cone: Vec4,
     pub viewport: Vec4,
+    pub voxel_origin: Vec4,
+    pub voxel_grid: Vec4,
+    pub cone: Vec4,
+    pub view: Vec4,
+}
+
+/// What the frame shows besides the full image (the GI debug views).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum View {
+    #[default]
+    Full,
+    Direct,
+    Indirect,
+    Diffuse,
+    Specular,
+    Ao,
+    Voxels,
+    /// The filtered radiance volume at one mip level.
+    Radiance(u32),
+}
+
+impl std::str::FromStr for View {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Ok(match s {
+            "full" => View::Full,
+            "direct" => View::Direct,
+            "indirect" => View::Indirect,
+            "diffuse" => View::Diffuse,
+            "specular" => View::Specular,
+            "ao" => View::Ao,
+            "voxels" => View::Voxels,
+            _ => match s.strip_prefix("radiance:").map(str::parse::<u32>) {
+                Some(Ok(level)) => View::Radiance(level),
+                _ => return Err(format!("unknown view '{s}' (full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL)")),
+            },
+        })
+    }
+}
+
+impl View {
+    pub fn code(self) -> u32 {
+        match self {
+            View::Full => config::VIEW_FULL,
+            View::Direct => config::VIEW_DIRECT,
+            View::Indirect => config::VIEW_INDIRECT,
+            View::Diffuse => config::VIEW_DIFFUSE,
+            View::Specular => config::VIEW_SPECULAR,
+            View::Ao => config::VIEW_AO,
+            View::Voxels => config::VIEW_VOXELS,
+            View::Radiance(_) => config::VIEW_RADIANCE,
+        }
+    }
+    /// Views drawn by marching the voxel volume instead of shading the surfaces.
+    pub fn is_volume(self) -> bool {
+        matches!(self, View::Voxels | View::Radiance(_))
+    }
+    /// Views already in [0, 1] that skip the c/(c+1) tone curve.
+    pub fn is_raw(self) -> bool {
+        matches!(self, View::Ao | View::Voxels)
+    }
+}
+
+/// Per-frame state beyond the scene: the voxel grid, GI settings and the view.
+pub struct FrameState<'a> {
+    pub grid: &'a VoxelGrid,
+    pub mip_levels: u32,
+    pub gi: &'a GiSettings,
+    pub gi_on: bool,
+    pub view: View,
+    pub first_frame: bool,
 }
 
 /// Near and far planes that contain the scene bounds seen from `eye`.
@@ -55,7 +129,7 @@ pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
 }
 
 impl FrameUniforms {
-    pub fn new(camera: &Camera, light: &Light, bounds: &Aabb, shadow_resolution: u32) -> Self {
+    pub fn new(camera: &Camera, light: &Light, bounds: &Aabb, shadow_resolution: u32, f: &FrameState) -> Self {
         let (near, far) = depth_range(camera.eye, bounds);
         let (light_pos, light_dir, light_color, cone) = match *light {
             Light::Spot { position, direction, intensity, inner_deg, outer_deg } => (
@@ -68,15 +142,27 @@ impl FrameUniforms {
                 (Vec4::new(0.0, 0.0, 0.0, config::LIGHT_DIRECTIONAL as f32), direction, irradiance, Vec4::ZERO)
             }
         };
+        let view_proj = camera.proj(near, far) * camera.view();
+        let light_view_proj = light_view_proj(light, bounds);
+        let level = match f.view {
+            View::Radiance(l) => l.min(f.mip_levels.saturating_sub(1)),
+            _ => 0,
+        };
         FrameUniforms {
-            view_proj: camera.proj(near, far) * camera.view(),
-            light_view_proj: light_view_proj(light, bounds),
+            view_proj,
+            light_view_proj,
+            light_inv_view_proj: light_view_proj.inverse(),
+            inv_view_proj: view_proj.inverse(),
             camera_pos: camera.eye.extend(1.0),
             light_pos,
             light_dir: light_dir.normalize().extend(0.0),
             light_color: light_color.extend(0.0),
             light_cone: Vec4::new(cone.x, cone.y, 1.0 / shadow_resolution as f32, 0.0),
             viewport: Vec4::new(camera.width as f32, camera.height as f32, 0.0, 0.0),
+            voxel_origin: f.grid.origin.extend(f.grid.voxel),
+            voxel_grid: Vec4::new(f.grid.resolution as f32, f.mip_levels as f32, f.gi.temporal, f.first_frame as u32 as f32),
+            cone: Vec4::new(f.gi.steps as f32, f.gi.bias, f.gi.cone_start, f.gi.lod_offset),
+            view: Vec4::new(f.view.code() as f32, level as f32, f.gi_on as u32 as f32, 0.0),
         }
     }
 }

@@ -1,27 +1,39 @@
 //! The frame: each pass is one module with one struct (`new` + `record`), and
 //! [`Renderer::record`] lists the frame's passes in order, top to bottom.
 
+pub mod filter;
 pub mod frame;
+pub mod inject;
 pub mod prepass;
+pub mod radiance;
 pub mod scene_gpu;
 pub mod shade;
 pub mod shadow;
 pub mod tonemap;
+pub mod volume_view;
 pub mod voxel_view;
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use std::cell::Cell;
+
 use crate::error::Result;
 use crate::gpu::{self, Context, GpuTimer, Image, ImageDesc, Timing};
-use crate::scene::Scene;
-use frame::FrameUniforms;
+use crate::scene::{Light, Scene};
+use crate::voxel::{VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
+use filter::FilterPass;
+pub use frame::View;
+use frame::{FrameState, FrameUniforms};
+use inject::InjectPass;
 use prepass::DepthPrepass;
+use radiance::RadianceVolume;
 use scene_gpu::SceneGpu;
 use shade::ShadePass;
 use shadow::ShadowPass;
 use tonemap::TonemapPass;
+use volume_view::VolumeViewPass;
 
 /// The images a frame renders into.
 pub struct Targets {
@@ -65,46 +77,135 @@ pub struct FrameImages {
     pub ldr: Vec<u8>,
 }
 
+/// What to render with: the voxelizer, the grid resolution, the view, GI on or off.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderOptions {
+    pub method: VoxelizeMethod,
+    /// Voxel grid resolution; `None`: the scene's.
+    pub resolution: Option<u32>,
+    pub view: View,
+    pub gi: bool,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions { method: VoxelizeMethod::tess(), resolution: None, view: View::Full, gi: true }
+    }
+}
+
 pub struct Renderer {
     pub ctx: Arc<Context>,
     pub scene: Scene,
+    pub options: RenderOptions,
     pub scene_gpu: SceneGpu,
+    pub voxels: VoxelVolume,
+    voxelizer: Voxelizer,
     shadow: ShadowPass,
+    pub radiance: RadianceVolume,
+    inject: InjectPass,
+    filter: FilterPass,
     prepass: DepthPrepass,
     shade: ShadePass,
+    volume_view: VolumeViewPass,
     tonemap: TonemapPass,
     pub targets: Targets,
     timer: GpuTimer,
+    frame_index: Cell<u64>,
+    /// Problems worth telling the user (coarse shadow map, subdivided triangles).
+    pub notes: Vec<String>,
+}
+
+/// World size of one shadow-map texel at the farthest scene point (for the injection warning).
+fn shadow_texel_size(light: &Light, bounds: &crate::scene::Aabb, resolution: u32) -> f32 {
+    let radius = bounds.size().length() * 0.5;
+    match *light {
+        Light::Directional { .. } => 2.0 * radius * 1.01 / resolution as f32,
+        Light::Spot { position, outer_deg, .. } => {
+            let far = (bounds.center() - position).length() + radius;
+            2.0 * far * ((outer_deg + 1.0).to_radians()).tan() / resolution as f32
+        }
+    }
 }
 
 impl Renderer {
-    pub fn new(ctx: &Arc<Context>, scene: Scene) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, scene: Scene, options: RenderOptions) -> Result<Self> {
+        let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
+        let grid = VoxelGrid::fit(&scene.mesh.bounds, resolution)?;
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
+        let voxels = VoxelVolume::new(ctx, grid)?;
+        let voxelizer = Voxelizer::new(ctx, &scene, &scene_gpu, &voxels, options.method)?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
+        let radiance = RadianceVolume::new(ctx, resolution)?;
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance)?;
+        let filter = FilterPass::new(ctx, &radiance)?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
-        let shade = ShadePass::new(ctx, &scene_gpu, &shadow)?;
+        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance)?;
+        let volume_view = VolumeViewPass::new(ctx, &scene_gpu, &voxels, &radiance, &targets)?;
         let tonemap = TonemapPass::new(ctx, &targets)?;
         let timer = GpuTimer::new(ctx, 16)?;
-        Ok(Renderer { ctx: ctx.clone(), scene, scene_gpu, shadow, prepass, shade, tonemap, targets, timer })
+        let mut notes = voxelizer.notes();
+        let texel = shadow_texel_size(&scene.light, &scene.mesh.bounds, scene.settings.shadow_resolution);
+        if texel > 0.7 * grid.voxel {
+            notes.push(format!(
+                "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m;                  lit voxels may be missed during injection (raise shadow.resolution)",
+                grid.voxel
+            ));
+        }
+        Ok(Renderer {
+            ctx: ctx.clone(),
+            scene,
+            options,
+            scene_gpu,
+            voxels,
+            voxelizer,
+            shadow,
+            radiance,
+            inject,
+            filter,
+            prepass,
+            shade,
+            volume_view,
+            tonemap,
+            targets,
+            timer,
+            frame_index: Cell::new(0),
+            notes,
+        })
     }
 
     /// Uploads this frame's uniforms from the scene's camera and light.
     pub fn update_uniforms(&self) {
         let s = &self.scene;
-        let u = FrameUniforms::new(&s.camera, &s.light, &s.mesh.bounds, s.settings.shadow_resolution);
+        let state = FrameState {
+            grid: &self.voxels.grid,
+            mip_levels: self.radiance.levels,
+            gi: &s.settings.gi,
+            gi_on: self.options.gi,
+            view: self.options.view,
+            first_frame: self.frame_index.get() == 0,
+        };
+        let u = FrameUniforms::new(&s.camera, &s.light, &s.mesh.bounds, s.settings.shadow_resolution, &state);
         self.scene_gpu.uniforms.write_pod(&u);
     }
 
     /// Records one whole frame. The passes, in order:
     pub fn record(&self, cmd: vk::CommandBuffer) {
         let t = &self.timer;
+        let (scene, targets) = (&self.scene_gpu, &self.targets);
         t.reset(cmd);
         t.span(cmd, "total", || {
-            t.span(cmd, "shadow map", || self.shadow.record(cmd, &self.scene_gpu));
-            t.span(cmd, "depth prepass", || self.prepass.record(cmd, &self.scene_gpu, &self.targets));
-            t.span(cmd, "shade", || self.shade.record(cmd, &self.scene_gpu, &self.targets));
-            t.span(cmd, "tonemap", || self.tonemap.record(cmd, &self.targets));
+            t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
+            t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
+            t.span(cmd, "inject", || self.inject.record(cmd, scene));
+            t.span(cmd, "filter", || self.filter.record(cmd));
+            if self.options.view.is_volume() {
+                t.span(cmd, "volume view", || self.volume_view.record(cmd, scene, targets));
+            } else {
+                t.span(cmd, "depth prepass", || self.prepass.record(cmd, scene, targets));
+                t.span(cmd, "shade", || self.shade.record(cmd, scene, targets));
+            }
+            t.span(cmd, "tonemap", || self.tonemap.record(cmd, targets, self.options.view.is_raw()));
         });
     }
 
@@ -112,9 +213,9 @@ impl Renderer {
     pub fn render(&self) -> Result<Vec<Timing>> {
         self.update_uniforms();
         self.ctx.submit_and_wait("frame", |cmd| self.record(cmd))?;
+        self.frame_index.set(self.frame_index.get() + 1);
         self.timer.read()
     }
-
     /// Reads the last frame's HDR and LDR images back to the host.
     pub fn read_frame(&self) -> Result<FrameImages> {
         let hdr = gpu::read_image(&self.ctx, &self.targets.hdr, vk::ImageLayout::GENERAL, 0)?;

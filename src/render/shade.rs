@@ -1,10 +1,16 @@
 //! Shading pass (Freed 2018 §4.5): forward fragment shading of the visible surfaces (depth
-//! EQUAL after the prepass) into the linear HDR target.
+//! EQUAL after the prepass): direct light, then indirect light by cone tracing the radiance
+//! volume, into the linear HDR target.
+//!
+//! Why forward (the thesis' choice) and not a compute pass over a G-buffer: after the depth
+//! prepass each visible pixel is shaded once either way, and the forward pass needs no G-buffer
+//! memory or extra pass; see README "Forward or deferred cone tracing" for what was measured.
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::radiance::RadianceVolume;
 use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::shadow::ShadowPass;
 use super::Targets;
@@ -19,14 +25,13 @@ pub struct ShadePass {
 }
 
 impl ShadePass {
-    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass) -> Result<Self> {
-        let set = DescriptorSet::new(
-            ctx,
-            "shade inputs",
-            &[Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, vk::ShaderStageFlags::FRAGMENT)],
-        )?;
+    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass, radiance: &RadianceVolume) -> Result<Self> {
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
+        let frag = vk::ShaderStageFlags::FRAGMENT;
+        let set = DescriptorSet::new(ctx, "shade inputs", &[Binding::new(0, sampled, frag), Binding::new(1, sampled, frag)])?;
         let shadow_sampler = Sampler::shadow(ctx, "shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
+        set.write_images(1, sampled, &[radiance.sampled_info()]);
         let mut desc = GraphicsDesc::new(
             "shade",
             vec![

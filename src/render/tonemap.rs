@@ -26,16 +26,18 @@ impl TonemapPass {
         )?;
         set.write_storage(0, targets.hdr.view.raw);
         set.write_storage(1, targets.ldr.view.raw);
-        let pipeline = Pipeline::compute(ctx, "tonemap", Stage::new(c, shaders::POST_TONEMAP_COMP), &[set.layout], 0)?;
+        let pipeline = Pipeline::compute(ctx, "tonemap", Stage::new(c, shaders::POST_TONEMAP_COMP), &[set.layout], 4)?;
         Ok(TonemapPass { ctx: ctx.clone(), pipeline, set })
     }
 
-    pub fn record(&self, cmd: vk::CommandBuffer, targets: &Targets) {
+    /// `raw`: the HDR target already holds [0, 1] values (skip the c/(c+1) curve).
+    pub fn record(&self, cmd: vk::CommandBuffer, targets: &Targets, raw: bool) {
         let ctx = &self.ctx;
         let rw = (vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
         let w = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE);
         gpu::image_barrier(ctx, cmd, &targets.ldr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, w);
         self.pipeline.bind(cmd, &[self.set.raw]);
+        self.pipeline.push(cmd, &(raw as u32));
         gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
         gpu::memory_barrier(ctx, cmd, w, rw);
     }

@@ -15,6 +15,30 @@ pub struct SceneFile {
     pub voxels: VoxelsFile,
     #[serde(default)]
     pub shadow: ShadowFile,
+    #[serde(default)]
+    pub gi: GiFile,
+}
+
+/// Cone-tracing and radiance settings (Freed 2018 §4.5.2 Listing 4.1, §4.7.2).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GiFile {
+    /// Maximum samples per cone.
+    pub steps: u32,
+    /// Cone start offset along the surface normal, in voxels (against self-illumination).
+    pub bias: f32,
+    /// Initial cone height, in voxels.
+    pub cone_start: f32,
+    /// Added to the mip level each sample reads.
+    pub lod_offset: f32,
+    /// Weight of this frame's radiance against the previous frame's (1 = no temporal filter).
+    pub temporal: f32,
+}
+
+impl Default for GiFile {
+    fn default() -> Self {
+        GiFile { steps: 48, bias: 1.5, cone_start: 1.0, lod_offset: 0.0, temporal: 1.0 }
+    }
 }
 
 #[derive(Debug, Clone, Deserialize)]

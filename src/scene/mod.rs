@@ -182,10 +182,13 @@ impl Light {
     }
 }
 
-#[derive(Clone, Copy, Debug)]
+pub use file::GiFile as GiSettings;
+
+#[derive(Clone, Debug)]
 pub struct Settings {
     pub voxel_resolution: u32,
     pub shadow_resolution: u32,
+    pub gi: GiSettings,
 }
 
 #[derive(Clone, Debug)]
@@ -308,7 +311,11 @@ impl Scene {
             [l] => convert_light(path, l)?,
             more => return Err(Error::input(path, format!("{} lights given; vct renders one shadowed light", more.len()))),
         };
-        let settings = Settings { voxel_resolution: file.voxels.resolution, shadow_resolution: file.shadow.resolution };
+        let settings = Settings {
+            voxel_resolution: file.voxels.resolution,
+            shadow_resolution: file.shadow.resolution,
+            gi: file.gi.clone(),
+        };
         check_settings(path, &settings)?;
         Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light, settings, warnings })
     }
@@ -317,7 +324,7 @@ impl Scene {
         let mut warnings = Vec::new();
         let (mesh, materials, textures) = obj::load_obj(path, &read_file, &mut warnings)?;
         let camera = frame_bounds(&mesh.bounds);
-        let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048 };
+        let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
         Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light: default_light(), settings, warnings })
     }
 
@@ -352,7 +359,7 @@ impl Scene {
             materials,
             textures: Vec::new(),
             light: default_light(),
-            settings: Settings { voxel_resolution: 64, shadow_resolution: 1024 },
+            settings: Settings { voxel_resolution: 64, shadow_resolution: 1024, gi: GiSettings::default() },
             warnings: Vec::new(),
         }
     }
@@ -373,6 +380,20 @@ fn check_settings(path: &Path, s: &Settings) -> Result<()> {
     }
     if !(64..=8192).contains(&s.shadow_resolution) {
         return Err(Error::input(path, format!("shadow.resolution must be in 64..=8192, got {}", s.shadow_resolution)));
+    }
+    let g = &s.gi;
+    if !(1..=512).contains(&g.steps) {
+        return Err(Error::input(path, format!("gi.steps must be in 1..=512, got {}", g.steps)));
+    }
+    for (name, v, lo, hi) in [
+        ("gi.bias", g.bias, 0.0, 16.0),
+        ("gi.cone_start", g.cone_start, 0.01, 16.0),
+        ("gi.lod_offset", g.lod_offset, -4.0, 8.0),
+        ("gi.temporal", g.temporal, 0.01, 1.0),
+    ] {
+        if !(v.is_finite() && (lo..=hi).contains(&v)) {
+            return Err(Error::input(path, format!("{name} must be in {lo}..={hi}, got {v}")));
+        }
     }
     Ok(())
 }

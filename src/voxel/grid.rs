@@ -33,9 +33,11 @@ impl VoxelGrid {
         Ok(VoxelGrid { origin, voxel, resolution })
     }
 
-    /// Bytes of GPU memory for the albedo and normal textures (R32UI each).
+    /// Bytes of GPU memory for the voxel textures: albedo, normal, emission (R32UI each) and
+    /// radiance with its mip chain (RGBA16F, 8/7 of the base level) plus its injection target.
     pub fn memory_bytes(&self) -> u64 {
-        2 * 4 * (self.resolution as u64).pow(3)
+        let n3 = (self.resolution as u64).pow(3);
+        3 * 4 * n3 + 8 * n3 * 8 / 7 + 8 * n3
     }
 
     pub fn voxel_count(&self) -> usize {

@@ -112,12 +112,14 @@ pub(crate) fn voxel_set(ctx: &Arc<Context>, volume: &VoxelVolume, params: &Voxel
             Binding::new(0, vk::DescriptorType::UNIFORM_BUFFER, g),
             Binding::new(1, vk::DescriptorType::STORAGE_IMAGE, g),
             Binding::new(2, vk::DescriptorType::STORAGE_IMAGE, g),
+            Binding::new(3, vk::DescriptorType::STORAGE_IMAGE, g),
         ],
     )?;
     let buffer = Buffer::from_slice(ctx, "voxel params", vk::BufferUsageFlags::UNIFORM_BUFFER, std::slice::from_ref(params))?;
     set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &buffer);
     set.write_storage(1, volume.albedo.view.raw);
     set.write_storage(2, volume.normal.view.raw);
+    set.write_storage(3, volume.emission.view.raw);
     Ok((set, buffer))
 }
 

@@ -1,6 +1,6 @@
 //! The voxel textures the voxelizers write: albedo+opacity and normal, each RGBA8 packed in an
-//! R32UI 3D storage image (atomic running average, count in the alpha byte). Cleared and
-//! rebuilt every frame.
+//! R32UI 3D storage image (atomic running average, count in the alpha byte), and emitted
+//! radiance (RGB9E5 in R32UI, atomic max). Cleared and rebuilt every frame.
 
 use std::sync::Arc;
 
@@ -17,6 +17,7 @@ pub struct VoxelVolume {
     pub grid: VoxelGrid,
     pub albedo: Image,
     pub normal: Image,
+    pub emission: Image,
 }
 
 /// Stages and accesses of the voxelizers' writes, for barriers.
@@ -59,6 +60,7 @@ impl VoxelVolume {
             grid,
             albedo: Image::new(ctx, "voxel albedo", desc)?,
             normal: Image::new(ctx, "voxel normal", desc)?,
+            emission: Image::new(ctx, "voxel emission", desc)?,
         })
     }
 
@@ -67,7 +69,7 @@ impl VoxelVolume {
         let ctx = &self.ctx;
         let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
         let clear_w = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
-        for img in [&self.albedo, &self.normal] {
+        for img in [&self.albedo, &self.normal, &self.emission] {
             gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, any, clear_w);
             unsafe {
                 ctx.device.cmd_clear_color_image(

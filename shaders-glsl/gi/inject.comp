@@ -1,0 +1,54 @@
+#version 460
+// Radiance injection (Freed 2018 §4.3, Algorithm 2): one thread per shadow-map texel
+// reconstructs the lit point from its depth, finds its voxel and writes the light that voxel
+// reflects: albedo/pi * E * |n.l| (Lambert, n the voxel's averaged normal), plus emission.
+// The value is computed at the voxel centre, so every texel that hits a voxel writes the same
+// value: the result does not depend on which write lands last.
+#include "frame.glsl"
+#include "light.glsl"
+#include "rgb9e5.glsl"
+
+layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
+layout(set = 1, binding = 0) uniform sampler2D shadow_depth;
+layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_albedo;
+layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
+layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
+layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
+
+const float PI = 3.14159265358979;
+
+vec4 unpack(uint p) {
+    return vec4(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu), float(p >> 24)) / 255.0;
+}
+
+void main() {
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(shadow_depth, 0);
+    if (any(greaterThanEqual(texel, size))) return;
+    float depth = texelFetch(shadow_depth, texel, 0).r;
+    if (depth >= 1.0) return;
+    vec2 uv = (vec2(texel) + 0.5) / vec2(size);
+    vec4 world = frame.light_inv_view_proj * vec4(uv * 2.0 - 1.0, depth, 1.0);
+    vec3 p = world.xyz / world.w;
+    // The lit point lies on a surface; its voxel is the occupied one just behind or in front.
+    vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
+    float n = frame.voxel_grid.x;
+    float step = 0.25 * frame.voxel_origin.w;
+    ivec3 v = ivec3(floor(world_to_uvw(p + l_dir * step) * n));
+    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
+    uint a = imageLoad(voxel_albedo, v).r;
+    if ((a >> 24) == 0u) {
+        v = ivec3(floor(world_to_uvw(p - l_dir * step) * n));
+        if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
+        a = imageLoad(voxel_albedo, v).r;
+        if ((a >> 24) == 0u) return;
+    }
+    vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
+    vec3 normal = unpack(imageLoad(voxel_normal, v).r).xyz * 2.0 - 1.0;
+    vec3 l;
+    vec3 irradiance = light_incident(centre, l);
+    float cos_theta = length(normal) > 1e-3 ? abs(dot(normalize(normal), l)) : 1.0;
+    vec3 reflected = unpack(a).rgb / PI * irradiance * cos_theta;
+    vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
+    imageStore(target, v, vec4(emission + reflected, 1.0));
+}

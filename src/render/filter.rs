@@ -1,0 +1,51 @@
+//! Radiance filtering (Freed 2018 §4.4): the full mip chain of the radiance volume, one
+//! compute dispatch per level, each voxel the average of its 8 children, with a barrier
+//! between levels.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::inject::compute_to_compute;
+use super::radiance::RadianceVolume;
+use crate::config::WORKGROUP_3D;
+use crate::error::Result;
+use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+
+pub struct FilterPass {
+    ctx: Arc<Context>,
+    pipeline: Pipeline,
+    /// Set `l - 1` reads level `l - 1` and writes level `l`.
+    sets: DescriptorSet,
+    resolution: u32,
+    levels: u32,
+}
+
+impl FilterPass {
+    pub fn new(ctx: &Arc<Context>, volume: &RadianceVolume) -> Result<Self> {
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
+        let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1)], volume.levels.saturating_sub(1))?;
+        let storage_info = |view| vk::DescriptorImageInfo { sampler: vk::Sampler::null(), image_view: view, image_layout: vk::ImageLayout::GENERAL };
+        for level in 1..volume.levels {
+            let set = level as usize - 1;
+            sets.write_images_at(set, 0, vk::DescriptorType::STORAGE_IMAGE, &[storage_info(volume.radiance.mip_view(level - 1))]);
+            sets.write_images_at(set, 1, vk::DescriptorType::STORAGE_IMAGE, &[storage_info(volume.radiance.mip_view(level))]);
+        }
+        let pipeline = Pipeline::compute(ctx, "mip filter", Stage::new(c, shaders::GI_FILTER_COMP), &[sets.layout], 0)?;
+        Ok(FilterPass { ctx: ctx.clone(), pipeline, sets, resolution: volume.radiance.desc.extent.width, levels: volume.levels })
+    }
+
+    pub fn record(&self, cmd: vk::CommandBuffer) {
+        let [w, r] = compute_to_compute();
+        for level in 1..self.levels {
+            self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
+            let n = (self.resolution >> level).max(1);
+            gpu::dispatch(&self.ctx, cmd, [n, n, n], [WORKGROUP_3D; 3]);
+            gpu::memory_barrier(&self.ctx, cmd, w, r);
+        }
+        // The cones sample the whole chain in the fragment stage (and the volume view in compute).
+        let sampled = (vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_SAMPLED_READ);
+        gpu::memory_barrier(&self.ctx, cmd, w, sampled);
+    }
+}

@@ -1,0 +1,110 @@
+//! Radiance injection (Freed 2018 §4.3, Algorithm 2) in three compute dispatches: resolve
+//! (one thread per voxel: opacity of every occupied voxel plus emission), inject (one thread
+//! per shadow-map texel: the direct light each lit voxel reflects), and the temporal blend into
+//! level 0 of the radiance volume (§4.7.2).
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::radiance::RadianceVolume;
+use super::scene_gpu::SceneGpu;
+use super::shadow::ShadowPass;
+use crate::config::{WORKGROUP_2D, WORKGROUP_3D};
+use crate::error::Result;
+use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
+use crate::voxel::VoxelVolume;
+
+pub struct InjectPass {
+    ctx: Arc<Context>,
+    resolve: Pipeline,
+    resolve_set: DescriptorSet,
+    inject: Pipeline,
+    inject_set: DescriptorSet,
+    blend: Pipeline,
+    blend_set: DescriptorSet,
+    _depth_sampler: Sampler,
+    resolution: u32,
+    shadow_resolution: u32,
+}
+
+/// Compute writes followed by compute reads.
+pub fn compute_to_compute() -> [(vk::PipelineStageFlags2, vk::AccessFlags2); 2] {
+    [
+        (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE),
+        (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE),
+    ]
+}
+
+impl InjectPass {
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &SceneGpu,
+        shadow: &ShadowPass,
+        voxels: &VoxelVolume,
+        radiance: &RadianceVolume,
+    ) -> Result<Self> {
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
+        let resolve_set = DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2)])?;
+        resolve_set.write_storage(0, voxels.albedo.view.raw);
+        resolve_set.write_storage(1, voxels.emission.view.raw);
+        resolve_set.write_storage(2, radiance.injected.view.raw);
+        let resolve = Pipeline::compute(ctx, "resolve", Stage::new(c, shaders::GI_RESOLVE_COMP), &[resolve_set.layout], 0)?;
+
+        let depth_sampler = Sampler::new(
+            ctx,
+            "shadow depth (nearest)",
+            &vk::SamplerCreateInfo::default()
+                .mag_filter(vk::Filter::NEAREST)
+                .min_filter(vk::Filter::NEAREST)
+                .address_mode_u(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+                .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_EDGE),
+        )?;
+        let inject_set = DescriptorSet::new(
+            ctx,
+            "inject",
+            &[Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c), storage(1), storage(2), storage(3), storage(4)],
+        )?;
+        inject_set.write_sampled(0, shadow.map.view.raw, depth_sampler.raw);
+        inject_set.write_storage(1, voxels.albedo.view.raw);
+        inject_set.write_storage(2, voxels.normal.view.raw);
+        inject_set.write_storage(3, voxels.emission.view.raw);
+        inject_set.write_storage(4, radiance.injected.view.raw);
+        let inject = Pipeline::compute(ctx, "inject", Stage::new(c, shaders::GI_INJECT_COMP), &[scene.set.layout, inject_set.layout], 0)?;
+
+        let blend_set = DescriptorSet::new(ctx, "temporal blend", &[storage(0), storage(1)])?;
+        blend_set.write_storage(0, radiance.injected.view.raw);
+        blend_set.write_storage(1, radiance.radiance.mip_view(0));
+        let blend = Pipeline::compute(ctx, "temporal blend", Stage::new(c, shaders::GI_BLEND_COMP), &[scene.set.layout, blend_set.layout], 0)?;
+
+        Ok(InjectPass {
+            ctx: ctx.clone(),
+            resolve,
+            resolve_set,
+            inject,
+            inject_set,
+            blend,
+            blend_set,
+            _depth_sampler: depth_sampler,
+            resolution: voxels.grid.resolution,
+            shadow_resolution: shadow.map.desc.extent.width,
+        })
+    }
+
+    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu) {
+        let ctx = &self.ctx;
+        let n = self.resolution;
+        let cube = [WORKGROUP_3D; 3];
+        let [w, r] = compute_to_compute();
+        self.resolve.bind(cmd, &[self.resolve_set.raw]);
+        gpu::dispatch(ctx, cmd, [n, n, n], cube);
+        gpu::memory_barrier(ctx, cmd, w, r);
+        self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
+        gpu::dispatch(ctx, cmd, [self.shadow_resolution, self.shadow_resolution, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+        gpu::memory_barrier(ctx, cmd, w, r);
+        self.blend.bind(cmd, &[scene.set.raw, self.blend_set.raw]);
+        gpu::dispatch(ctx, cmd, [n, n, n], cube);
+        gpu::memory_barrier(ctx, cmd, w, r);
+    }
+}

@@ -1,0 +1,58 @@
+//! The radiance volume (Freed 2018 §4.3-4.4): an RGBA16F 3D texture with a full mip chain
+//! (premultiplied radiance and opacity), plus the level-0 target that injection writes before
+//! the temporal blend. Both stay in GENERAL layout: written as storage, sampled by the cones.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use crate::error::{Error, Result};
+use crate::gpu::{self, Context, Image, ImageDesc, Sampler};
+
+pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+
+pub struct RadianceVolume {
+    pub injected: Image,
+    pub radiance: Image,
+    pub sampler: Sampler,
+    pub levels: u32,
+}
+
+impl RadianceVolume {
+    pub fn new(ctx: &Arc<Context>, resolution: u32) -> Result<Self> {
+        let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, RADIANCE_FORMAT) };
+        let need = vk::FormatFeatureFlags::STORAGE_IMAGE | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
+        if !props.optimal_tiling_features.contains(need) {
+            return Err(Error::MissingFeature {
+                device: ctx.info.name.clone(),
+                feature: "R16G16B16A16_SFLOAT storage images with linear filtering",
+                needed_by: "the radiance volume",
+            });
+        }
+        let levels = 32 - resolution.leading_zeros();
+        let storage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+        let injected = Image::new(ctx, "injected radiance", ImageDesc::d3(RADIANCE_FORMAT, resolution, storage))?;
+        let radiance = Image::new(
+            ctx,
+            "radiance volume",
+            ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
+        )?;
+        // Start both in GENERAL and zero, so the first temporal blend reads defined history.
+        ctx.submit_and_wait("clear radiance", |cmd| {
+            let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
+            let clear = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
+            for img in [&injected, &radiance] {
+                gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, none, clear);
+                unsafe {
+                    ctx.device.cmd_clear_color_image(cmd, img.raw, vk::ImageLayout::GENERAL, &vk::ClearColorValue::default(), &[img.range()])
+                };
+            }
+        })?;
+        Ok(RadianceVolume { injected, radiance, sampler: Sampler::linear_border(ctx, "radiance sampler")?, levels })
+    }
+
+    /// Descriptor info for sampling the whole mip chain (GENERAL layout).
+    pub fn sampled_info(&self) -> vk::DescriptorImageInfo {
+        vk::DescriptorImageInfo { sampler: self.sampler.raw, image_view: self.radiance.view.raw, image_layout: vk::ImageLayout::GENERAL }
+    }
+}

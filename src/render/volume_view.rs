@@ -1,0 +1,50 @@
+//! Debug views of the voxel volumes (`--view voxels`, `--view radiance:LEVEL`): a compute pass
+//! that marches each pixel's camera ray through the grid and writes the first voxel it meets
+//! into the HDR target, in place of the depth prepass and shading.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::radiance::RadianceVolume;
+use super::scene_gpu::SceneGpu;
+use super::Targets;
+use crate::config::WORKGROUP_2D;
+use crate::error::Result;
+use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::voxel::VoxelVolume;
+
+pub struct VolumeViewPass {
+    ctx: Arc<Context>,
+    pipeline: Pipeline,
+    set: DescriptorSet,
+}
+
+impl VolumeViewPass {
+    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, voxels: &VoxelVolume, radiance: &RadianceVolume, targets: &Targets) -> Result<Self> {
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let set = DescriptorSet::new(
+            ctx,
+            "volume view",
+            &[
+                Binding::new(0, vk::DescriptorType::STORAGE_IMAGE, c),
+                Binding::new(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
+                Binding::new(2, vk::DescriptorType::STORAGE_IMAGE, c),
+            ],
+        )?;
+        set.write_storage(0, voxels.albedo.view.raw);
+        set.write_images(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, &[radiance.sampled_info()]);
+        set.write_storage(2, targets.hdr.view.raw);
+        let pipeline = Pipeline::compute(ctx, "volume view", Stage::new(c, shaders::GI_VOLUME_VIEW_COMP), &[scene.set.layout, set.layout], 0)?;
+        Ok(VolumeViewPass { ctx: ctx.clone(), pipeline, set })
+    }
+
+    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
+        let ctx = &self.ctx;
+        let rw = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        self.pipeline.bind(cmd, &[scene.set.raw, self.set.raw]);
+        gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+        gpu::memory_barrier(ctx, cmd, rw, rw);
+    }
+}
