@@ -4,13 +4,18 @@
 mod common;
 
 use glam::Vec3;
-use vct::render::{FrameImages, Renderer};
+use vct::render::{FrameImages, RenderOptions, Renderer, View};
 use vct::scene::{Light, Scene};
+
+/// The direct-light frame (no cone tracing), small grid.
+fn direct_only() -> RenderOptions {
+    RenderOptions { view: View::Direct, gi: false, resolution: Some(32), ..Default::default() }
+}
 
 fn render_default() -> (Scene, FrameImages, std::sync::Arc<vct::gpu::Context>) {
     let ctx = common::context();
     let scene = Scene::embedded_default().unwrap();
-    let renderer = Renderer::new(&ctx, scene.clone()).unwrap();
+    let renderer = Renderer::new(&ctx, scene.clone(), direct_only()).unwrap();
     let timings = renderer.render().unwrap();
     assert!(timings.iter().any(|t| t.pass == "shade"), "per-pass timings are reported");
     let frame = renderer.read_frame().unwrap();
@@ -114,7 +119,7 @@ fn direct_light_matches_analytic_values() {
 #[test]
 fn rendering_is_deterministic() {
     let ctx = common::context();
-    let renderer = Renderer::new(&ctx, Scene::embedded_default().unwrap()).unwrap();
+    let renderer = Renderer::new(&ctx, Scene::embedded_default().unwrap(), direct_only()).unwrap();
     renderer.render().unwrap();
     let a = renderer.read_frame().unwrap();
     renderer.render().unwrap();

@@ -182,6 +182,34 @@ pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result
     })
 }
 
+/// Uploads every mip level of an image from `levels` (tightly packed texels) and leaves it in
+/// `final_layout`.
+pub fn upload_levels(ctx: &Arc<Context>, image: &Image, levels: &[Vec<u8>], final_layout: vk::ImageLayout) -> Result<()> {
+    let all: Vec<u8> = levels.concat();
+    let staging = Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, &all)?;
+    let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
+    let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
+    let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ);
+    ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
+        image_barrier(ctx, cmd, image, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL, none, transfer_w);
+        let mut offset = 0u64;
+        let regions: Vec<_> = levels
+            .iter()
+            .enumerate()
+            .map(|(m, data)| {
+                let r = vk::BufferImageCopy::default()
+                    .buffer_offset(offset)
+                    .image_subresource(vk::ImageSubresourceLayers { aspect_mask: aspect_of(image.desc.format), mip_level: m as u32, base_array_layer: 0, layer_count: 1 })
+                    .image_extent(image.extent_at(m as u32));
+                offset += data.len() as u64;
+                r
+            })
+            .collect();
+        ctx.device.cmd_copy_buffer_to_image(cmd, staging.raw, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &regions);
+        image_barrier(ctx, cmd, image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, final_layout, transfer_w, any);
+    })
+}
+
 /// Copies one mip of an image (in `layout`, which it is left in) to host memory.
 pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mip: u32) -> Result<Vec<u8>> {
     let e = image.extent_at(mip);

@@ -1,0 +1,26 @@
+#version 460
+// Test probe: traces one cone per invocation through a given radiance volume with the
+// renderer's own trace_cone (common/cone.glsl), so tests can compare it with a CPU model.
+#include "config.h"
+#include "cone.glsl"
+
+layout(local_size_x = WORKGROUP_1D) in;
+
+struct Probe {
+    vec4 uvw_aperture;  // xyz: start (texture space); w: full aperture (radians)
+    vec4 normal;
+    vec4 dir;
+};
+
+layout(set = 0, binding = 0) uniform sampler3D volume;
+layout(set = 0, binding = 1, std430) readonly buffer Probes { Probe probes[]; };
+layout(set = 0, binding = 2, std430) writeonly buffer Results { vec4 results[]; };
+layout(push_constant) uniform Push { int steps; float bias; float start; float lod_offset; float resolution; uint count; } push;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= push.count) return;
+    Probe p = probes[i];
+    ConeParams params = ConeParams(push.steps, push.bias, push.start, push.lod_offset, push.resolution);
+    results[i] = trace_cone(volume, p.uvw_aperture.xyz, p.normal.xyz, p.dir.xyz, p.uvw_aperture.w, params);
+}

@@ -1,0 +1,279 @@
+//! Issue "Global illumination": the radiance mip chain against a CPU box filter, the cone
+//! tracer against a CPU model, and the Cornell box's global illumination (colour bleeding,
+//! a lit ceiling, ambient occlusion, no light from nowhere, both voxelizers agreeing).
+
+mod common;
+
+use ash::vk;
+use glam::{Vec3, Vec4};
+use gpu_allocator::MemoryLocation;
+use half::f16;
+use vct::gpu::{self, shaders, Binding, Buffer, DescriptorSet, Image, ImageDesc, Pipeline, Sampler, Stage};
+use vct::reference::cone::{ConeParams, MipVolume};
+use vct::render::{FrameImages, RenderOptions, Renderer, View};
+use vct::scene::Scene;
+use vct::voxel::{Coverage, VoxelizeMethod};
+
+fn f16s(bytes: &[u8]) -> Vec<f32> {
+    bytes.chunks_exact(2).map(|b| f16::from_le_bytes([b[0], b[1]]).to_f32()).collect()
+}
+
+fn render(scene: Scene, options: RenderOptions) -> FrameImages {
+    let ctx = common::context();
+    let r = Renderer::new(&ctx, scene, options).unwrap();
+    r.render().unwrap();
+    let f = r.read_frame().unwrap();
+    drop(r);
+    common::assert_clean(&ctx);
+    f
+}
+
+fn options(view: View, res: u32) -> RenderOptions {
+    RenderOptions { method: VoxelizeMethod::raster(Coverage::Msaa), resolution: Some(res), view, gi: true }
+}
+
+#[test]
+fn every_mip_level_is_the_box_filter_of_the_level_below() {
+    let ctx = common::context();
+    let r = Renderer::new(&ctx, Scene::embedded_default().unwrap(), options(View::Full, 32)).unwrap();
+    r.render().unwrap();
+    let vol = &r.radiance.radiance;
+    let levels: Vec<Vec<f32>> =
+        (0..r.radiance.levels).map(|l| f16s(&gpu::read_image(&ctx, vol, vk::ImageLayout::GENERAL, l).unwrap())).collect();
+    assert!(levels[0].iter().any(|&v| v > 0.0), "level 0 is empty: nothing was injected");
+    for l in 1..levels.len() {
+        let n = (32u32 >> l) as usize;
+        let m = 2 * n;
+        for z in 0..n {
+            for y in 0..n {
+                for x in 0..n {
+                    for c in 0..4 {
+                        let mut sum = 0.0;
+                        for i in 0..8 {
+                            let (dx, dy, dz) = (i & 1, (i >> 1) & 1, i >> 2);
+                            sum += levels[l - 1][4 * ((2 * x + dx) + m * ((2 * y + dy) + m * (2 * z + dz))) + c];
+                        }
+                        let want = sum / 8.0;
+                        let got = levels[l][4 * (x + n * (y + n * z)) + c];
+                        assert!((got - want).abs() <= want.abs() * 2e-3 + 1e-5, "level {l} ({x},{y},{z}) channel {c}: {got} vs {want}");
+                    }
+                }
+            }
+        }
+    }
+    drop(r);
+    common::assert_clean(&ctx);
+}
+
+/// A 16³ volume: an emissive slab, a grey blob and empty space, with its box-filtered mips, all
+/// rounded to f16 as the GPU stores them.
+fn synthetic_volume() -> MipVolume {
+    let n = 16u32;
+    let round = |v: Vec4| Vec4::from_array(v.to_array().map(|c| f16::from_f32(c).to_f32()));
+    let mut base = Vec::new();
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let slab = (11..13).contains(&x);
+                let blob = Vec3::new(x as f32, y as f32, z as f32).distance(Vec3::new(5.0, 10.0, 6.0)) < 3.0;
+                base.push(round(if slab {
+                    Vec4::new(2.0, 1.0, 0.5, 1.0)
+                } else if blob {
+                    Vec4::new(0.3, 0.3, 0.3, 1.0)
+                } else {
+                    Vec4::ZERO
+                }));
+            }
+        }
+    }
+    let mut levels = vec![base];
+    while levels.len() < 5 {
+        let prev = levels.last().unwrap();
+        let m = (n >> (levels.len() - 1)) as usize;
+        let k = m / 2;
+        let mut next = Vec::new();
+        for z in 0..k {
+            for y in 0..k {
+                for x in 0..k {
+                    let mut s = Vec4::ZERO;
+                    for i in 0..8 {
+                        let (dx, dy, dz) = (i & 1, (i >> 1) & 1, i >> 2);
+                        s += prev[(2 * x + dx) + m * ((2 * y + dy) + m * (2 * z + dz))];
+                    }
+                    next.push(round(s / 8.0));
+                }
+            }
+        }
+        levels.push(next);
+    }
+    MipVolume { n, levels }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct Probe {
+    uvw_aperture: [f32; 4],
+    normal: [f32; 4],
+    dir: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ProbePush {
+    steps: i32,
+    bias: f32,
+    start: f32,
+    lod_offset: f32,
+    resolution: f32,
+    count: u32,
+}
+
+#[test]
+fn gpu_cone_tracing_agrees_with_the_cpu_model() {
+    let ctx = common::context();
+    let volume = synthetic_volume();
+    let image = Image::new(
+        &ctx,
+        "synthetic radiance",
+        ImageDesc::d3(vk::Format::R16G16B16A16_SFLOAT, 16, vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST).mips(5),
+    )
+    .unwrap();
+    let data: Vec<Vec<u8>> = volume
+        .levels
+        .iter()
+        .map(|l| l.iter().flat_map(|v| v.to_array().map(f16::from_f32)).flat_map(|h| h.to_le_bytes()).collect())
+        .collect();
+    gpu::upload_levels(&ctx, &image, &data, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL).unwrap();
+
+    let params = ConeParams { steps: 64, bias: 1.0, start: 1.0, lod_offset: 0.0 };
+    let mut probes = Vec::new();
+    for (start, dir, aperture) in [
+        (Vec3::new(0.2, 0.5, 0.5), Vec3::X, 0.785),
+        (Vec3::new(0.2, 0.5, 0.5), Vec3::new(1.0, 0.3, 0.1), 0.3),
+        (Vec3::new(0.1, 0.3, 0.7), Vec3::new(1.0, 0.2, -0.3), 0.05),
+        (Vec3::new(0.3, 0.2, 0.4), Vec3::new(-0.2, 1.0, 0.3), 0.785),
+        (Vec3::new(0.5, 0.9, 0.2), Vec3::new(0.4, -0.6, 0.5), 1.2),
+        (Vec3::new(0.95, 0.5, 0.5), -Vec3::X, 0.6),
+        (Vec3::new(0.5, 0.5, 0.05), Vec3::Z, 0.785),
+        (Vec3::new(0.4, 0.6, 0.4), Vec3::new(-1.0, 1.0, 0.5), 0.2),
+    ] {
+        let dir = dir.normalize();
+        probes.push(Probe { uvw_aperture: start.extend(aperture).into(), normal: dir.extend(0.0).into(), dir: dir.extend(0.0).into() });
+    }
+    let probe_buf = Buffer::from_slice(&ctx, "probes", vk::BufferUsageFlags::STORAGE_BUFFER, &probes).unwrap();
+    let results = Buffer::new(&ctx, "probe results", 16 * probes.len() as u64, vk::BufferUsageFlags::STORAGE_BUFFER, MemoryLocation::GpuToCpu).unwrap();
+    let sampler = Sampler::linear_border(&ctx, "probe sampler").unwrap();
+    let c = vk::ShaderStageFlags::COMPUTE;
+    let set = DescriptorSet::new(
+        &ctx,
+        "probe",
+        &[
+            Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
+            Binding::new(1, vk::DescriptorType::STORAGE_BUFFER, c),
+            Binding::new(2, vk::DescriptorType::STORAGE_BUFFER, c),
+        ],
+    )
+    .unwrap();
+    set.write_sampled(0, image.view.raw, sampler.raw);
+    set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &probe_buf);
+    set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &results);
+    let pipeline = Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 24).unwrap();
+    let push = ProbePush { steps: params.steps, bias: params.bias, start: params.start, lod_offset: params.lod_offset, resolution: 16.0, count: probes.len() as u32 };
+    ctx.submit_and_wait("cone probes", |cmd| {
+        pipeline.bind(cmd, &[set.raw]);
+        pipeline.push(cmd, &push);
+        gpu::dispatch(&ctx, cmd, [probes.len() as u32, 1, 1], [vct::config::WORKGROUP_1D, 1, 1]);
+        gpu::memory_barrier(&ctx, cmd, (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE), (vk::PipelineStageFlags2::HOST, vk::AccessFlags2::HOST_READ));
+    })
+    .unwrap();
+    let gpu_out: &[Vec4] = bytemuck::cast_slice(results.read());
+    let mut lit = 0;
+    for (p, g) in probes.iter().zip(gpu_out) {
+        let uvw = Vec4::from(p.uvw_aperture);
+        let cpu = volume.trace_cone(uvw.truncate(), Vec4::from(p.normal).truncate(), Vec4::from(p.dir).truncate(), uvw.w, params);
+        let err = (*g - cpu).abs().max_element();
+        assert!(err <= 0.01 + 0.01 * cpu.abs().max_element(), "probe {p:?}: GPU {g} vs CPU {cpu}");
+        lit += (cpu.x > 0.1) as usize;
+    }
+    assert!(lit >= 3, "too few probes see the emissive slab for the comparison to mean much");
+    common::assert_clean(&ctx);
+}
+
+/// Mean linear colour over a small window of pixels around the one that sees `p`.
+fn around(scene: &Scene, f: &FrameImages, p: Vec3) -> Vec3 {
+    let (x, y) = common::pixel_of(scene, p);
+    let mut s = Vec3::ZERO;
+    for dy in -1..=1i32 {
+        for dx in -1..=1i32 {
+            s += common::hdr(f, (x as i32 + dx) as u32, (y as i32 + dy) as u32);
+        }
+    }
+    s / 9.0
+}
+
+#[test]
+fn cornell_box_shows_colour_bleeding_a_lit_ceiling_and_occlusion() {
+    let scene = Scene::embedded_default().unwrap();
+    let full = render(scene.clone(), options(View::Full, 64));
+    let direct = render(scene.clone(), options(View::Direct, 64));
+    let ao = render(scene.clone(), options(View::Ao, 64));
+    let redness = |c: Vec3| c.x / c.y.max(1e-6);
+    let greenness = |c: Vec3| c.y / c.x.max(1e-6);
+    // Floor and back wall near each coloured wall take its colour.
+    for (near_red, near_green) in [
+        (Vec3::new(-2.4, 0.0, 2.0), Vec3::new(2.4, 0.0, 2.0)),
+        (Vec3::new(-2.4, 2.5, -2.75), Vec3::new(2.4, 2.5, -2.75)),
+    ] {
+        let (r, g) = (around(&scene, &full, near_red), around(&scene, &full, near_green));
+        println!("near red {r}, near green {g}");
+        assert!(redness(r) > 1.05 * redness(g), "no red bleeding: {r} vs {g}");
+        assert!(greenness(g) > 1.05 * greenness(r), "no green bleeding: {g} vs {r}");
+    }
+    // The ceiling: no direct light reaches it, indirect light does.
+    let ceiling = Vec3::new(0.5, 5.5, 1.5);
+    let (cf, cd) = (around(&scene, &full, ceiling), around(&scene, &direct, ceiling));
+    println!("ceiling full {cf}, direct {cd}");
+    assert!(cd.max_element() < 1e-4, "direct light on the ceiling: {cd}");
+    assert!(cf.min_element() > 0.01, "ceiling not lit by indirect light: {cf}");
+    // Ambient occlusion: darker along the room's edges than mid-wall.
+    let mid = around(&scene, &ao, Vec3::new(1.2, 3.5, -2.75)).x;
+    for corner in [Vec3::new(0.0, 5.45, -2.7), Vec3::new(-2.7, 0.05, 2.0)] {
+        let c = around(&scene, &ao, corner).x;
+        println!("AO at edge {corner}: {c}, mid-wall {mid}");
+        assert!(c < mid - 0.1, "edge AO {c} vs mid-wall {mid}");
+    }
+}
+
+#[test]
+fn no_light_no_emission_means_black_and_emission_lights_only_its_own_colour() {
+    let mut scene = Scene::embedded_default().unwrap();
+    scene.light = scene.light.scaled(0.0);
+    let black = render(scene.clone(), options(View::Full, 32));
+    let max = black.hdr.chunks_exact(4).map(|p| p[0].max(p[1]).max(p[2])).fold(0.0f32, f32::max);
+    assert!(max < 1e-6, "light from nowhere: max radiance {max}");
+    // Make the left wall emit pure red: red may appear anywhere, green and blue nowhere.
+    let red = scene.materials.iter().position(|m| m.name == "red").unwrap();
+    scene.materials[red].emissive = Vec3::new(2.0, 0.0, 0.0);
+    let lit = render(scene.clone(), options(View::Full, 32));
+    let wall = around(&scene, &lit, Vec3::new(-2.75, 2.0, 0.0));
+    let floor = around(&scene, &lit, Vec3::new(-1.5, 0.0, 1.5));
+    assert!(wall.x >= 2.0 && floor.x > 0.01, "emission {wall}, its indirect light {floor}");
+    let gb = lit.hdr.chunks_exact(4).map(|p| p[1].max(p[2])).fold(0.0f32, f32::max);
+    assert!(gb < 1e-6, "green/blue light from a red emitter: {gb}");
+}
+
+#[test]
+fn tessellated_and_rasterized_voxels_give_nearly_the_same_image() {
+    let scene = Scene::embedded_default().unwrap();
+    let mut tess = options(View::Full, 64);
+    tess.method = VoxelizeMethod::tess();
+    let a = render(scene.clone(), tess);
+    let b = render(scene, options(View::Full, 64));
+    let diffs: Vec<f32> = a.ldr.chunks_exact(4).zip(b.ldr.chunks_exact(4)).map(|(p, q)| (0..3).map(|c| (p[c] as f32 - q[c] as f32).abs()).fold(0.0, f32::max)).collect();
+    let mean = diffs.iter().sum::<f32>() / diffs.len() as f32;
+    let mut sorted = diffs.clone();
+    sorted.sort_by(f32::total_cmp);
+    let p99 = sorted[sorted.len() * 99 / 100];
+    println!("tess vs raster: mean |ΔLDR| {mean:.3}, 99th percentile {p99}");
+    assert!(mean < 1.5 && p99 <= 12.0, "mean {mean}, p99 {p99}");
+}
