@@ -15,4 +15,4 @@ demo: deps
 	cargo run --quiet --bin vct -- render --out vct.png
 
 test: deps
-	VCT_VALIDATION=1 cargo test --no-fail-fast
+	VCT_VALIDATION=1 cargo test --no-fail-fast --lib --bins --tests

@@ -277,3 +277,27 @@ fn tessellated_and_rasterized_voxels_give_nearly_the_same_image() {
     println!("tess vs raster: mean |ΔLDR| {mean:.3}, 99th percentile {p99}");
     assert!(mean < 1.5 && p99 <= 12.0, "mean {mean}, p99 {p99}");
 }
+
+#[test]
+fn volume_views_show_the_voxels_and_the_radiance_mips() {
+    let scene = Scene::embedded_default().unwrap();
+    let voxels = render(scene.clone(), options(View::Voxels, 32));
+    let wall = around(&scene, &voxels, Vec3::new(-2.75, 2.0, 0.0));
+    assert!(wall.x > 0.5 && wall.y < 0.1, "voxel view of the red wall: {wall}");
+    let radiance = render(scene.clone(), options(View::Radiance(1), 32));
+    let floor = around(&scene, &radiance, Vec3::new(-1.0, 0.0, 2.0));
+    let ceiling = around(&scene, &radiance, Vec3::new(0.5, 5.5, 1.5));
+    assert!(floor.x > 0.1 && ceiling.max_element() < 1e-3, "radiance level 1: lit floor {floor}, unlit ceiling {ceiling}");
+}
+
+#[test]
+fn hardware_coverage_is_a_clear_error_where_the_extension_is_missing() {
+    let ctx = common::context();
+    if ctx.info.features.conservative_rasterization {
+        return; // a device that has it (NVIDIA) builds the pipeline in the other tests' manner
+    }
+    let mut o = options(View::Full, 32);
+    o.method = VoxelizeMethod::raster(Coverage::Hardware);
+    let err = Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).err().expect("hw coverage must fail on this device");
+    assert!(err.to_string().contains("VK_EXT_conservative_rasterization"), "{err}");
+}
