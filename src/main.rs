@@ -7,7 +7,7 @@ use anyhow::{bail, Context as _, Result};
 use clap::{Args, Parser, Subcommand};
 
 use vct::gpu::{Context, ContextOptions, Feature, Timing};
-use vct::render::{RenderOptions, Renderer, View};
+use vct::render::{RenderOptions, Renderer, Tracing, View};
 use vct::reference::coverage::RefGrid;
 use vct::scene::Scene;
 use vct::voxel::{headless, Coverage, VoxelizeMethod};
@@ -33,6 +33,12 @@ enum Command {
 enum VoxelizerArg {
     Tess,
     Raster,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum TracingArg {
+    Forward,
+    Deferred,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -146,9 +152,15 @@ struct RenderArgs {
     /// Direct light only: skip cone tracing.
     #[arg(long)]
     no_gi: bool,
+    /// Where cone tracing runs: a fragment shader after a depth prepass, or compute over a G-buffer.
+    #[arg(long, value_enum, default_value = "deferred")]
+    tracing: TracingArg,
     /// Write the per-pass GPU times as JSON.
     #[arg(long)]
     timings: Option<PathBuf>,
+    /// Render this many frames and report each pass's median GPU time (the last frame is saved).
+    #[arg(long, default_value_t = 1)]
+    frames: u32,
     #[command(flatten)]
     gpu: GpuArgs,
 }
@@ -190,12 +202,23 @@ fn render(args: RenderArgs) -> Result<()> {
     let mut scene = load_scene(args.scene.as_deref())?;
     scene.set_size(args.width, args.height)?;
     let ctx = open_device(&args.gpu)?;
-    let options = RenderOptions { method: args.method.method()?, resolution: args.method.res, view: args.view, gi: !args.no_gi };
+    let tracing = match args.tracing {
+        TracingArg::Forward => Tracing::Forward,
+        TracingArg::Deferred => Tracing::Deferred,
+    };
+    let options = RenderOptions { method: args.method.method()?, resolution: args.method.res, view: args.view, gi: !args.no_gi, tracing };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
         println!("note: {n}");
     }
-    let timings = renderer.render().context("rendering")?;
+    if !(1..=10_000).contains(&args.frames) {
+        bail!("--frames must be in 1..=10000, got {}", args.frames);
+    }
+    let mut runs = Vec::new();
+    for _ in 0..args.frames {
+        runs.push(renderer.render().context("rendering")?);
+    }
+    let timings = vct::gpu::timer::median(&runs);
     let frame = renderer.read_frame()?;
     print_timings(&timings);
     if let Some(path) = &args.timings {
@@ -203,6 +226,7 @@ fn render(args: RenderArgs) -> Result<()> {
             "device": ctx.info.name,
             "driver": ctx.info.driver,
             "voxelizer": options.method.label(),
+            "tracing": format!("{:?}", options.tracing),
             "resolution": renderer.voxels.grid.resolution,
             "width": frame.width,
             "height": frame.height,

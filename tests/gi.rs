@@ -29,7 +29,7 @@ fn render(scene: Scene, options: RenderOptions) -> FrameImages {
 }
 
 fn options(view: View, res: u32) -> RenderOptions {
-    RenderOptions { method: VoxelizeMethod::raster(Coverage::Msaa), resolution: Some(res), view, gi: true }
+    RenderOptions { method: VoxelizeMethod::raster(Coverage::Msaa), resolution: Some(res), view, ..Default::default() }
 }
 
 #[test]
@@ -300,4 +300,17 @@ fn hardware_coverage_is_a_clear_error_where_the_extension_is_missing() {
     o.method = VoxelizeMethod::raster(Coverage::Hardware);
     let err = Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).err().expect("hw coverage must fail on this device");
     assert!(err.to_string().contains("VK_EXT_conservative_rasterization"), "{err}");
+}
+
+#[test]
+fn deferred_tracing_renders_what_forward_tracing_renders() {
+    let scene = Scene::embedded_default().unwrap();
+    let deferred = render(scene.clone(), options(View::Full, 32));
+    let mut o = options(View::Full, 32);
+    o.tracing = vct::render::Tracing::Forward;
+    let forward = render(scene, o);
+    let worst = forward.ldr.iter().zip(&deferred.ldr).map(|(a, b)| (*a as i32 - *b as i32).abs()).max().unwrap();
+    let mean = forward.ldr.iter().zip(&deferred.ldr).map(|(a, b)| (*a as i32 - *b as i32).abs()).sum::<i32>() as f32 / forward.ldr.len() as f32;
+    println!("forward vs deferred: mean |ΔLDR| {mean:.4}, worst {worst}");
+    assert!(mean < 0.5 && worst <= 40, "mean {mean}, worst {worst}");
 }

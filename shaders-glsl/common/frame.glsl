@@ -35,10 +35,6 @@ struct Material {
 
 layout(set = 0, binding = 1, std430) readonly buffer Materials { Material materials[]; };
 
-// Set 1: the drawn material's textures (bound per draw).
-layout(set = 1, binding = 0) uniform sampler2D albedo_texture;
-layout(set = 1, binding = 1) uniform sampler2D normal_texture;
-
 layout(push_constant) uniform Push { uint material; } push;
 
 #endif

@@ -1,16 +1,13 @@
 #version 460
-// Final shading (Freed 2018 §4.5, Algorithm 3), forward after a depth prepass: emission plus
-// Cook-Torrance direct light (3x3 PCF shadow) plus indirect light by voxel cone tracing —
-// five diffuse cones (45 degrees, one along the normal, four tilted 45 degrees, weighted by
-// their cosine) and one specular cone along the reflection (aperture 0.1 pi roughness).
-// Diffuse-cone occlusion gives ambient occlusion. Writes linear radiance (or a debug view).
+// Forward shading (Freed 2018 §4.5, the thesis' choice): after the depth prepass, each visible
+// fragment applies its material's textures and runs `shade_surface` (common/shading.glsl).
 #include "frame.glsl"
-#include "brdf.glsl"
-#include "light.glsl"
-#include "cone.glsl"
 
 layout(set = 2, binding = 0) uniform sampler2DShadow shadow_map;
 layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
+
+#include "shading.glsl"
+#include "surface.glsl"
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
@@ -19,81 +16,9 @@ layout(location = 3) in vec4 in_tangent;
 
 layout(location = 0) out vec4 out_radiance;
 
-float shadow_factor(vec3 p) {
-    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
-    if (clip.w <= 0.0) return 0.0;
-    vec3 ndc = clip.xyz / clip.w;
-    vec2 uv = ndc.xy * 0.5 + 0.5;
-    float texel = frame.light_cone.z;
-    float lit = 0.0;
-    for (int y = -PCF_RADIUS; y <= PCF_RADIUS; y++)
-        for (int x = -PCF_RADIUS; x <= PCF_RADIUS; x++)
-            lit += texture(shadow_map, vec3(uv + vec2(x, y) * texel, ndc.z));
-    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
-}
-
 void main() {
     Material m = materials[push.material];
-    vec3 albedo = m.albedo.rgb;
-    if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
-    float roughness = m.emissive.a, metallic = m.albedo.a;
-    vec3 v = normalize(frame.camera_pos.xyz - in_world);
-    vec3 n = normalize(in_normal);
-    if (m.tex.y == HAS_TEXTURE) {
-        vec3 t = normalize(in_tangent.xyz - n * dot(n, in_tangent.xyz));
-        vec3 b = cross(n, t) * in_tangent.w;
-        vec3 tn = texture(normal_texture, in_uv).xyz * 2.0 - 1.0;
-        n = normalize(mat3(t, b, n) * tn);
-    }
-    // Two-sided: shade the side facing the viewer.
-    if (dot(n, v) < 0.0) n = -n;
-
-    vec3 l;
-    vec3 irradiance = light_incident(in_world, l);
-    vec3 direct = vec3(0.0);
-    if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
-        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(in_world);
-    }
-
-    vec3 diffuse = vec3(0.0), specular = vec3(0.0);
-    float occlusion = 0.0;
-    if (frame.view.z > 0.5) {
-        ConeParams p = ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_grid.x);
-        vec3 uvw = world_to_uvw(in_world);
-        vec3 t, b;
-        tangent_frame(n, t, b);
-        float tilt = radians(DIFFUSE_CONE_TILT_DEG), aperture = radians(DIFFUSE_CONE_APERTURE_DEG);
-        // Cosine weights: the irradiance integral weights each direction by n.dir.
-        float w_side = cos(tilt), w_sum = 1.0 + 4.0 * w_side;
-        vec3 dirs[5] = vec3[](n, n * cos(tilt) + t * sin(tilt), n * cos(tilt) - t * sin(tilt),
-                              n * cos(tilt) + b * sin(tilt), n * cos(tilt) - b * sin(tilt));
-        vec3 gathered = vec3(0.0);
-        for (int i = 0; i < 5; i++) {
-            float w = (i == 0 ? 1.0 : w_side) / w_sum;
-            vec4 c = trace_cone(radiance_volume, uvw, n, normalize(dirs[i]), aperture, p);
-            gathered += w * c.rgb;
-            occlusion += w * c.a;
-        }
-        // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
-        diffuse = albedo * (1.0 - metallic) * gathered;
-        vec3 f0 = mix(m.specular.rgb, albedo, metallic);
-        if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
-            vec3 r = reflect(-v, n);
-            float spec_aperture = max(0.1 * PI * roughness, MIN_SPECULAR_APERTURE);
-            vec4 c = trace_cone(radiance_volume, uvw, n, r, spec_aperture, p);
-            specular = fresnel_schlick(f0, dot(n, v)) * c.rgb;
-        }
-    }
-
-    vec3 indirect = diffuse + specular;
-    vec3 result;
-    switch (uint(frame.view.x)) {
-        case VIEW_DIRECT: result = m.emissive.rgb + direct; break;
-        case VIEW_INDIRECT: result = indirect; break;
-        case VIEW_DIFFUSE: result = diffuse; break;
-        case VIEW_SPECULAR: result = specular; break;
-        case VIEW_AO: result = vec3(1.0 - occlusion); break;
-        default: result = m.emissive.rgb + direct + indirect; break;
-    }
-    out_radiance = vec4(result, 1.0);
+    vec3 albedo, n;
+    surface_inputs(m, in_normal, in_uv, in_tangent, albedo, n);
+    out_radiance = vec4(shade_surface(m, albedo, n, in_world), 1.0);
 }

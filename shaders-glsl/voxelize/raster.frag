@@ -6,6 +6,7 @@
 // writes those whose voxel the triangle really touches (triangle/box test); without, only
 // the layer at the pixel centre's depth (the thesis' method).
 #include "frame.glsl"
+#include "material_textures.glsl"
 #include "voxel.glsl"
 #include "tribox.glsl"
 

@@ -3,6 +3,7 @@
 // every generated vertex writes the voxel it falls in, with barycentric-interpolated albedo
 // (material colour times texture) and normal.
 #include "frame.glsl"
+#include "material_textures.glsl"
 #include "voxel.glsl"
 
 layout(triangles, equal_spacing, point_mode) in;

@@ -113,7 +113,21 @@ pub fn render(ctx: &Context, cmd: vk::CommandBuffer, a: Attachments, record: imp
                 .clear_value(vk::ClearValue { color: vk::ClearColorValue { float32: *clear } })
         })
         .collect();
-    let depth = a.depth.map(|(img, load)| {
+    render_multi(ctx, cmd, &color, a.depth, a.width, a.height, record);
+}
+
+/// Begins dynamic rendering with several colour attachments (already described) and an
+/// optional depth attachment, runs `record`, ends it.
+pub fn render_multi(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    color: &[vk::RenderingAttachmentInfo],
+    depth: Option<(&Image, vk::AttachmentLoadOp)>,
+    width: u32,
+    height: u32,
+    record: impl FnOnce(),
+) {
+    let depth = depth.map(|(img, load)| {
         vk::RenderingAttachmentInfo::default()
             .image_view(img.view.raw)
             .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
@@ -121,13 +135,13 @@ pub fn render(ctx: &Context, cmd: vk::CommandBuffer, a: Attachments, record: imp
             .store_op(vk::AttachmentStoreOp::STORE)
             .clear_value(vk::ClearValue { depth_stencil: vk::ClearDepthStencilValue { depth: 1.0, stencil: 0 } })
     });
-    let area = vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: a.width, height: a.height } };
-    let mut info = vk::RenderingInfo::default().render_area(area).layer_count(1).color_attachments(&color);
+    let area = vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width, height } };
+    let mut info = vk::RenderingInfo::default().render_area(area).layer_count(1).color_attachments(color);
     if let Some(d) = depth.as_ref() {
         info = info.depth_attachment(d);
     }
     unsafe { ctx.device.cmd_begin_rendering(cmd, &info) };
-    set_viewport(ctx, cmd, a.width, a.height);
+    set_viewport(ctx, cmd, width, height);
     record();
     unsafe { ctx.device.cmd_end_rendering(cmd) };
 }

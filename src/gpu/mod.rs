@@ -11,7 +11,7 @@ pub mod pipeline;
 pub mod timer;
 
 pub use buffer::Buffer;
-pub use commands::{dispatch, image_barrier, image_barrier_mips, memory_barrier, read_image, render, upload_levels, Attachments};
+pub use commands::{dispatch, image_barrier, image_barrier_mips, memory_barrier, read_image, render, render_multi, upload_levels, Attachments};
 pub use context::{Context, ContextOptions, DeviceInfo};
 pub use descriptor::{Binding, DescriptorSet};
 pub use features::Feature;

@@ -90,3 +90,16 @@ impl Drop for GpuTimer {
         unsafe { self.ctx.device.destroy_query_pool(self.pool, None) };
     }
 }
+
+/// Per-pass median over several frames' timings (passes matched by name, in first-frame order).
+pub fn median(frames: &[Vec<Timing>]) -> Vec<Timing> {
+    let Some(first) = frames.first() else { return Vec::new() };
+    first
+        .iter()
+        .map(|t| {
+            let mut ms: Vec<f64> = frames.iter().filter_map(|f| f.iter().find(|u| u.pass == t.pass)).map(|u| u.ms).collect();
+            ms.sort_by(f64::total_cmp);
+            Timing { pass: t.pass.clone(), ms: ms[ms.len() / 2] }
+        })
+        .collect()
+}

@@ -2,9 +2,8 @@
 //! EQUAL after the prepass): direct light, then indirect light by cone tracing the radiance
 //! volume, into the linear HDR target.
 //!
-//! Why forward (the thesis' choice) and not a compute pass over a G-buffer: after the depth
-//! prepass each visible pixel is shaded once either way, and the forward pass needs no G-buffer
-//! memory or extra pass; see README "Forward or deferred cone tracing" for what was measured.
+//! This is the thesis' forward path (`--tracing forward`); the default is the deferred compute
+//! variant in `deferred.rs`, which measured faster (see `Tracing`).
 
 use std::sync::Arc;
 

@@ -1,0 +1,84 @@
+// Surface shading shared by the forward fragment shader and the deferred compute shader
+// (Freed 2018 §4.5, Algorithm 3): emission plus Cook-Torrance direct light (3x3 PCF shadow)
+// plus indirect light by voxel cone tracing — five diffuse cones (45 degrees, one along the
+// normal, four tilted 45 degrees, weighted by their cosine) and one specular cone along the
+// reflection (aperture 0.1 pi roughness). Diffuse-cone occlusion gives ambient occlusion.
+// The includer binds `shadow_map` (sampler2DShadow) and `radiance_volume` (sampler3D).
+#ifndef VCT_SHADING_GLSL
+#define VCT_SHADING_GLSL
+#include "frame.glsl"
+#include "brdf.glsl"
+#include "light.glsl"
+#include "cone.glsl"
+
+float shadow_factor(vec3 p) {
+    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
+    if (clip.w <= 0.0) return 0.0;
+    vec3 ndc = clip.xyz / clip.w;
+    vec2 uv = ndc.xy * 0.5 + 0.5;
+    float texel = frame.light_cone.z;
+    float lit = 0.0;
+    for (int y = -PCF_RADIUS; y <= PCF_RADIUS; y++)
+        for (int x = -PCF_RADIUS; x <= PCF_RADIUS; x++)
+            lit += texture(shadow_map, vec3(uv + vec2(x, y) * texel, ndc.z));
+    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+}
+
+// Radiance leaving `world` towards the camera (or the debug view chosen in frame.view), for
+// material `m` with its textures already applied: `albedo` and shading normal `n`.
+vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
+    float roughness = m.emissive.a, metallic = m.albedo.a;
+    vec3 v = normalize(frame.camera_pos.xyz - world);
+    // Two-sided: shade the side facing the viewer.
+    if (dot(n, v) < 0.0) n = -n;
+
+    vec3 l;
+    vec3 irradiance = light_incident(world, l);
+    vec3 direct = vec3(0.0);
+    if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
+        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(world);
+    }
+    vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+    float occlusion = 0.0;
+    if (frame.view.z > 0.5) {
+        ConeParams p = ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_grid.x);
+        vec3 uvw = world_to_uvw(world);
+        vec3 t, b;
+        tangent_frame(n, t, b);
+        float tilt = radians(DIFFUSE_CONE_TILT_DEG), aperture = radians(DIFFUSE_CONE_APERTURE_DEG);
+        // Cosine weights: the irradiance integral weights each direction by n.dir.
+        float w_side = cos(tilt), w_sum = 1.0 + 4.0 * w_side;
+        vec3 dirs[5] = vec3[](n, n * cos(tilt) + t * sin(tilt), n * cos(tilt) - t * sin(tilt),
+                              n * cos(tilt) + b * sin(tilt), n * cos(tilt) - b * sin(tilt));
+        vec3 gathered = vec3(0.0);
+        for (int i = 0; i < 5; i++) {
+            float w = (i == 0 ? 1.0 : w_side) / w_sum;
+            vec4 c = trace_cone(radiance_volume, uvw, n, normalize(dirs[i]), aperture, p);
+            gathered += w * c.rgb;
+            occlusion += w * c.a;
+        }
+        // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
+        diffuse = albedo * (1.0 - metallic) * gathered;
+        vec3 f0 = mix(m.specular.rgb, albedo, metallic);
+        if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
+            vec3 r = reflect(-v, n);
+            float spec_aperture = max(0.1 * PI * roughness, MIN_SPECULAR_APERTURE);
+            vec4 c = trace_cone(radiance_volume, uvw, n, r, spec_aperture, p);
+            specular = fresnel_schlick(f0, dot(n, v)) * c.rgb;
+        }
+    }
+
+    vec3 indirect = diffuse + specular;
+    vec3 result;
+    switch (uint(frame.view.x)) {
+        case VIEW_DIRECT: result = m.emissive.rgb + direct; break;
+        case VIEW_INDIRECT: result = indirect; break;
+        case VIEW_DIFFUSE: result = diffuse; break;
+        case VIEW_SPECULAR: result = specular; break;
+        case VIEW_AO: result = vec3(1.0 - occlusion); break;
+        default: result = m.emissive.rgb + direct + indirect; break;
+    }
+    return result;
+}
+
+#endif

@@ -1,0 +1,125 @@
+//! Deferred variant of the final shading, kept to measure where cone tracing should run
+//! (`--tracing deferred`): a G-buffer pass (depth; albedo with textures applied + material
+//! index; shading normal + camera distance), then one compute thread per pixel running the same
+//! `shade_surface` (common/shading.glsl) as the forward path.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::radiance::RadianceVolume;
+use super::scene_gpu::{vertex_layout, SceneGpu};
+use super::shadow::ShadowPass;
+use super::Targets;
+use crate::config::WORKGROUP_2D;
+use crate::error::Result;
+use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage};
+
+const ALBEDO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+/// Normal and camera distance: 32-bit, so the rebuilt position is as exact as the forward one.
+const NORMAL_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+
+pub struct DeferredShadePass {
+    ctx: Arc<Context>,
+    gbuffer_pipeline: Pipeline,
+    shade_pipeline: Pipeline,
+    set: DescriptorSet,
+    albedo: Image,
+    normal: Image,
+    _shadow_sampler: Sampler,
+}
+
+impl DeferredShadePass {
+    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass, radiance: &RadianceVolume, targets: &Targets) -> Result<Self> {
+        let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::STORAGE;
+        let albedo = Image::new(ctx, "gbuffer albedo", ImageDesc::d2(ALBEDO_FORMAT, targets.width, targets.height, usage))?;
+        let normal = Image::new(ctx, "gbuffer normal", ImageDesc::d2(NORMAL_FORMAT, targets.width, targets.height, usage))?;
+        let mut desc = GraphicsDesc::new(
+            "gbuffer",
+            vec![
+                Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&[0]),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_GBUFFER_FRAG),
+            ],
+        );
+        desc.set_layouts = vec![scene.set.layout, scene.material_sets.layout];
+        desc.push_constant_size = 4;
+        desc.vertex = Some(vertex_layout());
+        desc.depth_format = Targets::DEPTH_FORMAT;
+        desc.depth_test = true;
+        desc.depth_write = true;
+        desc.color_formats = vec![ALBEDO_FORMAT, NORMAL_FORMAT];
+        let gbuffer_pipeline = Pipeline::graphics(ctx, &desc)?;
+
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
+        let storage = vk::DescriptorType::STORAGE_IMAGE;
+        let set = DescriptorSet::new(
+            ctx,
+            "deferred shade",
+            &[
+                Binding::new(0, sampled, c),
+                Binding::new(1, sampled, c),
+                Binding::new(2, storage, c),
+                Binding::new(3, storage, c),
+                Binding::new(4, storage, c),
+            ],
+        )?;
+        let shadow_sampler = Sampler::shadow(ctx, "deferred shadow sampler")?;
+        set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
+        set.write_images(1, sampled, &[radiance.sampled_info()]);
+        set.write_storage(2, albedo.view.raw);
+        set.write_storage(3, normal.view.raw);
+        set.write_storage(4, targets.hdr.view.raw);
+        let shade_pipeline = Pipeline::compute(
+            ctx,
+            "deferred shade",
+            Stage::new(c, shaders::SHADE_DEFERRED_COMP),
+            &[scene.set.layout, scene.material_sets.layout, set.layout],
+            0,
+        )?;
+        Ok(DeferredShadePass { ctx: ctx.clone(), gbuffer_pipeline, shade_pipeline, set, albedo, normal, _shadow_sampler: shadow_sampler })
+    }
+
+    /// Depth and G-buffer in one geometry pass (it replaces the depth prepass).
+    pub fn record_gbuffer(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
+        let ctx = &self.ctx;
+        let depth_rw = (
+            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
+            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
+        );
+        let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
+        let compute_r = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ);
+        gpu::image_barrier(ctx, cmd, &targets.depth, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, compute_r, depth_rw);
+        for img in [&self.albedo, &self.normal] {
+            gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, compute_r, color_w);
+        }
+        let color: Vec<_> = [&self.albedo, &self.normal]
+            .iter()
+            .map(|img| {
+                vk::RenderingAttachmentInfo::default()
+                    .image_view(img.view.raw)
+                    .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+                    .load_op(vk::AttachmentLoadOp::CLEAR)
+                    .store_op(vk::AttachmentStoreOp::STORE)
+            })
+            .collect();
+        gpu::render_multi(ctx, cmd, &color, Some((&targets.depth, vk::AttachmentLoadOp::CLEAR)), targets.width, targets.height, || {
+            self.gbuffer_pipeline.bind(cmd, &[scene.set.raw]);
+            scene.draw(cmd, self.gbuffer_pipeline.layout, true);
+        });
+        for img in [&self.albedo, &self.normal] {
+            gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, vk::ImageLayout::GENERAL, color_w, compute_r);
+        }
+    }
+
+    /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL).
+    pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
+        let ctx = &self.ctx;
+        let rw = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        self.shade_pipeline.bind(cmd, &[scene.set.raw]);
+        self.shade_pipeline.bind_set(cmd, 2, self.set.raw);
+        gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+        gpu::memory_barrier(ctx, cmd, rw, rw);
+    }
+}
