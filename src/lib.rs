@@ -8,6 +8,7 @@ pub mod output;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod viewer;
 pub mod voxel;
 
 /// Constants shared with GLSL (generated from `shaders-glsl/common/config.h`).

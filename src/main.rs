@@ -25,8 +25,50 @@ enum Command {
     Render(RenderArgs),
     /// Voxelize a scene and measure it against exact triangle/box coverage.
     Voxelize(VoxelizeArgs),
+    /// Open a window running the full GI frame every frame (H for the keys).
+    View(ViewArgs),
     /// List Vulkan devices, their drivers and the features vct uses.
     Devices,
+}
+
+#[derive(Args)]
+struct ViewArgs {
+    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    scene: Option<PathBuf>,
+    #[arg(long)]
+    width: Option<u32>,
+    #[arg(long)]
+    height: Option<u32>,
+    #[command(flatten)]
+    method: MethodArgs,
+    /// Wait for vertical blank (FIFO) or not (MAILBOX/IMMEDIATE where offered).
+    #[arg(long, value_enum, default_value = "on")]
+    vsync: OnOff,
+    /// Render this many frames, then exit (automation and tests).
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Save the last frame to this PNG on exit.
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    /// Resize the window to WxH a third of the way through --frames.
+    #[arg(long, value_parser = parse_size)]
+    resize_to: Option<(u32, u32)>,
+    #[command(flatten)]
+    gpu: GpuArgs,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum OnOff {
+    On,
+    Off,
+}
+
+fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let (w, h) = s.split_once('x').ok_or_else(|| format!("expected WxH, got '{s}'"))?;
+    let parse = |v: &str| v.parse::<u32>().map_err(|_| format!("bad size '{s}'"));
+    let (w, h) = (parse(w)?, parse(h)?);
+    vct::scene::check_image_size(w, h).map_err(|e| e.to_string())?;
+    Ok((w, h))
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -278,6 +320,33 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     check_validation(&ctx)
 }
 
+fn view(args: ViewArgs) -> Result<()> {
+    let mut scene = load_scene(args.scene.as_deref())?;
+    scene.set_size(args.width, args.height)?;
+    let opts = ContextOptions::from_env(args.gpu.validation, args.gpu.device.clone());
+    let report = vct::viewer::run(vct::viewer::ViewerOptions {
+        scene,
+        render: RenderOptions { method: args.method.method()?, resolution: args.method.res, ..Default::default() },
+        vsync: args.vsync == OnOff::On,
+        validation: opts.validation,
+        device: opts.device,
+        frames: args.frames,
+        screenshot: args.screenshot,
+        resize_to: args.resize_to,
+    })
+    .context("running the viewer")?;
+    println!(
+        "frames: {}; GPU memory allocated: {:.1} MiB at start, {:.1} MiB at end",
+        report.frames,
+        report.gpu_bytes_start as f64 / 1048576.0,
+        report.gpu_bytes_end as f64 / 1048576.0
+    );
+    if report.validation_errors + report.validation_warnings > 0 {
+        bail!("the validation layer reported {} error(s) and {} warning(s)", report.validation_errors, report.validation_warnings);
+    }
+    Ok(())
+}
+
 fn devices() -> Result<()> {
     let list = Context::list_devices().context("listing Vulkan devices")?;
     if list.is_empty() {
@@ -308,6 +377,7 @@ fn main() {
     let result = match cli.command {
         Command::Render(a) => render(a),
         Command::Voxelize(a) => voxelize(a),
+        Command::View(a) => view(a),
         Command::Devices => devices(),
     };
     if let Err(e) = result {

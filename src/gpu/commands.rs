@@ -146,6 +146,57 @@ pub fn render_multi(
     unsafe { ctx.device.cmd_end_rendering(cmd) };
 }
 
+/// Blits `src` (GENERAL, already written; left in GENERAL) onto a swapchain image and leaves
+/// that image ready to present.
+pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: vk::Image, extent: vk::Extent2D) {
+    let range = vk::ImageSubresourceRange { aspect_mask: vk::ImageAspectFlags::COLOR, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: 1 };
+    let barrier = |old, new, src_stage, src_access, dst_stage, dst_access| {
+        vk::ImageMemoryBarrier2::default()
+            .src_stage_mask(src_stage)
+            .src_access_mask(src_access)
+            .dst_stage_mask(dst_stage)
+            .dst_access_mask(dst_access)
+            .old_layout(old)
+            .new_layout(new)
+            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+            .image(dst)
+            .subresource_range(range)
+    };
+    let to_dst = [barrier(
+        vk::ImageLayout::UNDEFINED,
+        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+        vk::PipelineStageFlags2::ALL_COMMANDS,
+        vk::AccessFlags2::NONE,
+        vk::PipelineStageFlags2::ALL_TRANSFER,
+        vk::AccessFlags2::TRANSFER_WRITE,
+    )];
+    let to_present = [barrier(
+        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+        vk::ImageLayout::PRESENT_SRC_KHR,
+        vk::PipelineStageFlags2::ALL_TRANSFER,
+        vk::AccessFlags2::TRANSFER_WRITE,
+        vk::PipelineStageFlags2::ALL_COMMANDS,
+        vk::AccessFlags2::NONE,
+    )];
+    let e = src.desc.extent;
+    let sub = vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 };
+    let blit = [vk::ImageBlit::default()
+        .src_subresource(sub)
+        .src_offsets([vk::Offset3D::default(), vk::Offset3D { x: e.width as i32, y: e.height as i32, z: 1 }])
+        .dst_subresource(sub)
+        .dst_offsets([vk::Offset3D::default(), vk::Offset3D { x: extent.width as i32, y: extent.height as i32, z: 1 }])];
+    let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
+    let read = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
+    image_barrier(ctx, cmd, src, vk::ImageLayout::GENERAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, any, read);
+    unsafe {
+        ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&to_dst));
+        ctx.device.cmd_blit_image(cmd, src.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, dst, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &blit, vk::Filter::NEAREST);
+        ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&to_present));
+    }
+    image_barrier(ctx, cmd, src, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::ImageLayout::GENERAL, read, any);
+}
+
 /// A device-local buffer filled with `data` through a staging copy.
 pub fn upload_buffer<T: bytemuck::Pod>(
     ctx: &Arc<Context>,

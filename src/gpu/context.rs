@@ -352,6 +352,11 @@ impl Context {
         }
     }
 
+    /// Waits until the device has finished all submitted work.
+    pub fn wait_idle(&self) -> Result<()> {
+        unsafe { self.device.device_wait_idle() }.vk("vkDeviceWaitIdle")
+    }
+
     /// Records `record` into a fresh command buffer, submits it and waits for it to finish.
     pub fn submit_and_wait(&self, what: &str, record: impl FnOnce(vk::CommandBuffer)) -> Result<()> {
         let d = &self.device;

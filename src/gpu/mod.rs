@@ -8,15 +8,17 @@ pub mod descriptor;
 pub mod features;
 pub mod image;
 pub mod pipeline;
+pub mod swapchain;
 pub mod timer;
 
 pub use buffer::Buffer;
-pub use commands::{dispatch, image_barrier, image_barrier_mips, memory_barrier, read_image, render, render_multi, upload_levels, Attachments};
+pub use commands::{blit_to_present, dispatch, image_barrier, image_barrier_mips, memory_barrier, read_image, render, render_multi, upload_levels, Attachments};
 pub use context::{Context, ContextOptions, DeviceInfo};
 pub use descriptor::{Binding, DescriptorSet};
 pub use features::Feature;
 pub use image::{Image, ImageDesc, Sampler};
 pub use pipeline::{GraphicsDesc, Pipeline, Stage, VertexLayout};
+pub use swapchain::{FrameOutcome, Swapchain};
 pub use timer::{GpuTimer, Timing};
 
 /// SPIR-V of every shader in `shaders-glsl/`, compiled by build.rs.

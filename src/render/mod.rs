@@ -244,8 +244,35 @@ impl Renderer {
     pub fn render(&self) -> Result<Vec<Timing>> {
         self.update_uniforms();
         self.ctx.submit_and_wait("frame", |cmd| self.record(cmd))?;
+        self.frame_recorded();
+        self.timings()
+    }
+
+    /// Marks a frame as submitted (the next one may blend with its radiance).
+    pub fn frame_recorded(&self) {
         self.frame_index.set(self.frame_index.get() + 1);
+    }
+
+    /// The GPU time of each pass of the last finished frame.
+    pub fn timings(&self) -> Result<Vec<Timing>> {
         self.timer.read()
+    }
+
+    /// Renders at a new size: the targets and the passes that write them are rebuilt.
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
+        crate::scene::check_image_size(width, height)?;
+        self.ctx.wait_idle()?;
+        let ctx = self.ctx.clone();
+        self.scene.camera.width = width;
+        self.scene.camera.height = height;
+        self.targets = Targets::new(&ctx, width, height)?;
+        self.deferred = match self.options.tracing {
+            Tracing::Deferred => Some(DeferredShadePass::new(&ctx, &self.scene_gpu, &self.shadow, &self.radiance, &self.targets)?),
+            Tracing::Forward => None,
+        };
+        self.volume_view = VolumeViewPass::new(&ctx, &self.scene_gpu, &self.voxels, &self.radiance, &self.targets)?;
+        self.tonemap = TonemapPass::new(&ctx, &self.targets)?;
+        Ok(())
     }
     /// Reads the last frame's HDR and LDR images back to the host.
     pub fn read_frame(&self) -> Result<FrameImages> {

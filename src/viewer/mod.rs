@@ -1,0 +1,411 @@
+//! The windowed viewer (`vct view`): winit window, ash-window surface and swapchain, running
+//! the same [`Renderer`] frame as `vct render` every frame, then blitting its output to the
+//! swapchain image. Keys switch voxelizer, view, resolution, GI and temporal filtering; the
+//! title shows FPS and per-pass GPU times. `--frames N --screenshot FILE` automates it.
+
+pub mod camera;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{DeviceEvent, DeviceId, ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{Window, WindowId};
+
+use crate::error::{Error, Result};
+use crate::gpu::{self, Context, ContextOptions, FrameOutcome, Swapchain, Timing};
+use crate::render::{RenderOptions, Renderer, View};
+use crate::scene::Scene;
+use crate::voxel::{Coverage, VoxelizeMethod};
+use camera::{light_step, swing_light, CameraController, Input, Mode};
+
+pub const HELP: &str = "\
+vct viewer keys:
+  W A S D        fly forward / left / back / right (orbit mode: W/S zoom)
+  Q E            fly down / up          Shift   faster
+  right mouse    look around (fly)      left mouse  orbit (orbit mode)   wheel  zoom
+  O              toggle fly / orbit around the scene centre
+  arrow keys     swing the light's direction (the GI follows)
+  V              switch voxelizer (tessellation / rasterized)
+  C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, radiance:0..3
+  + / -          voxel resolution up / down (16..512)
+  G              global illumination on / off
+  T              temporal filtering on / off
+  F12            screenshot (vct-screenshot-N.png)
+  H or F1        this help          Esc  quit";
+
+pub struct ViewerOptions {
+    pub scene: Scene,
+    pub render: RenderOptions,
+    pub vsync: bool,
+    pub validation: bool,
+    pub device: Option<String>,
+    /// Exit after this many presented frames.
+    pub frames: Option<u32>,
+    /// Save the last frame here on exit.
+    pub screenshot: Option<PathBuf>,
+    /// Ask the window for this size a third of the way through `frames`.
+    pub resize_to: Option<(u32, u32)>,
+}
+
+/// What a run of the viewer did.
+pub struct ViewerReport {
+    pub frames: u32,
+    pub validation_errors: u32,
+    pub validation_warnings: u32,
+    pub gpu_bytes_start: u64,
+    pub gpu_bytes_end: u64,
+}
+
+const VIEWS: [View; 11] = [
+    View::Full,
+    View::Direct,
+    View::Indirect,
+    View::Diffuse,
+    View::Specular,
+    View::Ao,
+    View::Voxels,
+    View::Radiance(0),
+    View::Radiance(1),
+    View::Radiance(2),
+    View::Radiance(3),
+];
+
+/// Live state once the window exists. Fields drop in order: GPU objects before the window.
+struct Running {
+    renderer: Renderer,
+    swapchain: Swapchain,
+    ctx: Arc<Context>,
+    window: Arc<Window>,
+    camera: CameraController,
+    input: Input,
+    last_frame: Instant,
+    title_at: Instant,
+    title_frames: u32,
+    last_timings: Vec<Timing>,
+    screenshots: u32,
+    gpu_bytes_start: u64,
+}
+
+struct App {
+    options: ViewerOptions,
+    running: Option<Running>,
+    error: Option<Error>,
+    frames: u32,
+    report: Option<ViewerReport>,
+}
+
+fn key_axis(code: KeyCode, plus: KeyCode, minus: KeyCode, pressed: bool, axis: &mut f32) {
+    if code == plus {
+        *axis = if pressed { 1.0 } else { axis.min(0.0) };
+    } else if code == minus {
+        *axis = if pressed { -1.0 } else { axis.max(0.0) };
+    }
+}
+
+impl App {
+    fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let cam = self.options.scene.camera;
+        let attrs = Window::default_attributes()
+            .with_title("vct")
+            .with_inner_size(PhysicalSize::new(cam.width, cam.height));
+        let window = Arc::new(event_loop.create_window(attrs).map_err(|e| Error::Loader(format!("cannot open a window: {e}")))?);
+        let display = raw_window_handle::HasDisplayHandle::display_handle(&*window)
+            .map_err(|e| Error::Loader(format!("no display: {e}")))?
+            .as_raw();
+        let exts = ash_window::enumerate_required_extensions(display).map_err(|r| Error::Vulkan { call: "enumerate_required_extensions", result: r })?;
+        // SAFETY: ash-window returns pointers to 'static NUL-terminated extension names.
+        let instance_extensions = exts.iter().map(|&p| unsafe { std::ffi::CStr::from_ptr(p) }).collect();
+        let ctx = Context::new(&ContextOptions {
+            validation: self.options.validation,
+            device: self.options.device.clone(),
+            instance_extensions,
+            swapchain: true,
+        })?;
+        println!("device: {} ({})", ctx.info.name, ctx.info.driver);
+        let size = window.inner_size();
+        let (w, h) = (size.width.max(1), size.height.max(1));
+        let swapchain = Swapchain::new(&ctx, &*window, w, h, self.options.vsync)?;
+        let mut scene = self.options.scene.clone();
+        scene.camera.width = w;
+        scene.camera.height = h;
+        let camera = CameraController::new(&scene.camera, &scene.mesh.bounds);
+        let renderer = Renderer::new(&ctx, scene, self.options.render)?;
+        for n in &renderer.notes {
+            println!("note: {n}");
+        }
+        println!("{HELP}");
+        let now = Instant::now();
+        self.running = Some(Running {
+            gpu_bytes_start: ctx.allocated_bytes(),
+            renderer,
+            swapchain,
+            ctx,
+            window,
+            camera,
+            input: Input::default(),
+            last_frame: now,
+            title_at: now,
+            title_frames: 0,
+            last_timings: Vec::new(),
+            screenshots: 0,
+        });
+        Ok(())
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
+        self.error = Some(e);
+        self.finish();
+        event_loop.exit();
+    }
+
+    /// Saves the screenshot if asked and records the report; drops the GPU state.
+    fn finish(&mut self) {
+        if let Some(r) = self.running.take() {
+            let _ = r.swapchain.wait_idle();
+            if let (Some(path), None) = (&self.options.screenshot, &self.error) {
+                if let Err(e) = r.renderer.read_frame().and_then(|f| crate::output::write_png(path, &f)) {
+                    self.error = Some(e);
+                } else {
+                    println!("wrote {}", path.display());
+                }
+            }
+            let ctx = r.ctx.clone();
+            let gpu_bytes_end = ctx.allocated_bytes();
+            let gpu_bytes_start = r.gpu_bytes_start;
+            drop(r);
+            self.report = Some(ViewerReport {
+                frames: self.frames,
+                validation_errors: ctx.validation.errors(),
+                validation_warnings: ctx.validation.warnings(),
+                gpu_bytes_start,
+                gpu_bytes_end,
+            });
+        }
+    }
+
+    /// Rebuilds the renderer with new options (voxelizer or resolution), keeping camera and light.
+    fn rebuild(r: &mut Running, options: RenderOptions) -> Result<()> {
+        r.ctx.wait_idle()?;
+        let scene = r.renderer.scene.clone();
+        r.renderer = Renderer::new(&r.ctx, scene, options)?;
+        for n in &r.renderer.notes {
+            println!("note: {n}");
+        }
+        Ok(())
+    }
+
+    fn on_key(&mut self, code: KeyCode, pressed: bool, event_loop: &ActiveEventLoop) -> Result<()> {
+        let Some(r) = self.running.as_mut() else { return Ok(()) };
+        let i = &mut r.input;
+        key_axis(code, KeyCode::KeyW, KeyCode::KeyS, pressed, &mut i.forward);
+        key_axis(code, KeyCode::KeyD, KeyCode::KeyA, pressed, &mut i.right);
+        key_axis(code, KeyCode::KeyE, KeyCode::KeyQ, pressed, &mut i.up);
+        key_axis(code, KeyCode::ArrowRight, KeyCode::ArrowLeft, pressed, &mut i.light.0);
+        key_axis(code, KeyCode::ArrowUp, KeyCode::ArrowDown, pressed, &mut i.light.1);
+        if matches!(code, KeyCode::ShiftLeft | KeyCode::ShiftRight) {
+            i.fast = pressed;
+        }
+        if !pressed {
+            return Ok(());
+        }
+        let mut options = r.renderer.options;
+        match code {
+            KeyCode::Escape => event_loop.exit(),
+            KeyCode::KeyH | KeyCode::F1 => println!("{HELP}"),
+            KeyCode::KeyO => {
+                r.camera.toggle_mode(&r.renderer.scene.camera);
+                println!("camera: {}", if r.camera.mode == Mode::Fly { "fly" } else { "orbit" });
+            }
+            KeyCode::KeyV => {
+                options.method = match options.method {
+                    VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Msaa),
+                    VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
+                };
+                println!("voxelizer: {}", options.method.label());
+                Self::rebuild(r, options)?;
+            }
+            KeyCode::Equal | KeyCode::NumpadAdd | KeyCode::Minus | KeyCode::NumpadSubtract => {
+                let now = r.renderer.voxels.grid.resolution;
+                let up = matches!(code, KeyCode::Equal | KeyCode::NumpadAdd);
+                let next = if up { (now * 2).min(512) } else { (now / 2).max(16) };
+                if next != now {
+                    options.resolution = Some(next);
+                    println!("voxel resolution: {next}³");
+                    Self::rebuild(r, options)?;
+                }
+            }
+            KeyCode::KeyC => {
+                let at = VIEWS.iter().position(|v| *v == options.view).unwrap_or(0);
+                r.renderer.options.view = VIEWS[(at + 1) % VIEWS.len()];
+                println!("view: {:?}", r.renderer.options.view);
+            }
+            KeyCode::KeyG => {
+                r.renderer.options.gi = !options.gi;
+                println!("global illumination: {}", if r.renderer.options.gi { "on" } else { "off" });
+            }
+            KeyCode::KeyT => {
+                let gi = &mut r.renderer.scene.settings.gi;
+                gi.temporal = if gi.temporal >= 1.0 { 0.2 } else { 1.0 };
+                println!("temporal filter: {}", if gi.temporal < 1.0 { "on (0.2)" } else { "off" });
+            }
+            KeyCode::F12 => {
+                r.swapchain.wait_idle()?;
+                let path = PathBuf::from(format!("vct-screenshot-{}.png", r.screenshots));
+                crate::output::write_png(&path, &r.renderer.read_frame()?)?;
+                r.screenshots += 1;
+                println!("wrote {}", path.display());
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let Some(r) = self.running.as_mut() else { return Ok(()) };
+        let size = r.window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return Ok(()); // minimised: nothing to draw until restored
+        }
+        if (size.width, size.height) != (r.renderer.targets.width, r.renderer.targets.height) {
+            r.swapchain.recreate(size.width, size.height)?;
+            r.renderer.resize(size.width, size.height)?;
+        }
+        let now = Instant::now();
+        let dt = (now - r.last_frame).as_secs_f32().min(0.25);
+        r.last_frame = now;
+        r.camera.update(&mut r.renderer.scene.camera, &mut r.input, dt);
+        let (yaw, pitch) = light_step(&r.input, dt);
+        if yaw != 0.0 || pitch != 0.0 {
+            swing_light(&mut r.renderer.scene.light, yaw, pitch);
+        }
+        let (renderer, ctx) = (&r.renderer, &r.ctx);
+        let mut timings = Ok(Vec::new());
+        let extent = r.swapchain.extent;
+        let outcome = r.swapchain.frame(|cmd, image| {
+            timings = renderer.timings();
+            renderer.update_uniforms();
+            renderer.record(cmd);
+            gpu::blit_to_present(ctx, cmd, &renderer.targets.ldr, image, extent);
+        })?;
+        r.renderer.frame_recorded();
+        let timings = timings?;
+        if !timings.is_empty() {
+            r.last_timings = timings;
+        }
+        if outcome == FrameOutcome::OutOfDate {
+            let s = r.window.inner_size();
+            r.swapchain.recreate(s.width.max(1), s.height.max(1))?;
+        }
+        self.frames += 1;
+        r.title_frames += 1;
+        let since = (now - r.title_at).as_secs_f32();
+        if since >= 0.5 {
+            let passes: Vec<String> = r.last_timings.iter().map(|t| format!("{} {:.1}", t.pass, t.ms)).collect();
+            r.window.set_title(&format!(
+                "vct — {:.1} fps — {} {}³ — GPU ms: {}",
+                r.title_frames as f32 / since,
+                r.renderer.options.method.label(),
+                r.renderer.voxels.grid.resolution,
+                passes.join(", ")
+            ));
+            r.title_at = now;
+            r.title_frames = 0;
+        }
+        if let (Some(n), Some((w, h))) = (self.options.frames, self.options.resize_to) {
+            if self.frames == (n / 3).max(1) {
+                let _ = r.window.request_inner_size(PhysicalSize::new(w, h));
+            }
+        }
+        if self.options.frames.is_some_and(|n| self.frames >= n) {
+            self.finish();
+            event_loop.exit();
+        }
+        Ok(())
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_none() && self.error.is_none() {
+            if let Err(e) = self.start(event_loop) {
+                self.fail(event_loop, e);
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let result = match event {
+            WindowEvent::CloseRequested => {
+                self.finish();
+                event_loop.exit();
+                Ok(())
+            }
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            WindowEvent::KeyboardInput { event, .. } => match event.physical_key {
+                PhysicalKey::Code(code) if !event.repeat => self.on_key(code, event.state == ElementState::Pressed, event_loop),
+                _ => Ok(()),
+            },
+            WindowEvent::MouseInput { state, button, .. } => {
+                if let Some(r) = self.running.as_mut() {
+                    let look_button = if r.camera.mode == Mode::Fly { MouseButton::Right } else { MouseButton::Left };
+                    if button == look_button {
+                        r.input.look = (0.0, 0.0);
+                        LOOKING.with(|l| l.set(state == ElementState::Pressed));
+                    }
+                }
+                Ok(())
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                if let Some(r) = self.running.as_mut() {
+                    r.input.zoom += match delta {
+                        MouseScrollDelta::LineDelta(_, y) => y,
+                        MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                    };
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        };
+        if let Err(e) = result {
+            self.fail(event_loop, e);
+        }
+    }
+
+    fn device_event(&mut self, _event_loop: &ActiveEventLoop, _id: DeviceId, event: DeviceEvent) {
+        if let (DeviceEvent::MouseMotion { delta }, Some(r)) = (event, self.running.as_mut()) {
+            if LOOKING.with(|l| l.get()) {
+                r.input.look.0 += delta.0 as f32;
+                r.input.look.1 += delta.1 as f32;
+            }
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(r) = &self.running {
+            r.window.request_redraw();
+        }
+    }
+}
+
+thread_local! {
+    /// Whether the look/orbit mouse button is held.
+    static LOOKING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Opens the window and runs until it is closed, Esc is pressed or `frames` have been shown.
+pub fn run(options: ViewerOptions) -> Result<ViewerReport> {
+    let event_loop = EventLoop::new().map_err(|e| Error::Loader(format!("cannot start the window system (is DISPLAY set?): {e}")))?;
+    event_loop.set_control_flow(ControlFlow::Poll);
+    let mut app = App { options, running: None, error: None, frames: 0, report: None };
+    event_loop.run_app(&mut app).map_err(|e| Error::Loader(format!("event loop: {e}")))?;
+    app.finish();
+    if let Some(e) = app.error {
+        return Err(e);
+    }
+    app.report.ok_or_else(|| Error::Loader("the viewer never opened its window".into()))
+}
