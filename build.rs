@@ -89,10 +89,7 @@ fn main() {
         });
         match compiler.compile_into_spirv(&source, kind, &path.display().to_string(), "main", Some(&options)) {
             Ok(artifact) => {
-                let ident = rel
-                    .to_string_lossy()
-                    .replace(['/', '\\', '.', '-'], "_")
-                    .to_uppercase();
+                let ident = rel.to_string_lossy().replace(['/', '\\', '.', '-'], "_").to_uppercase();
                 let spv = out.join(format!("{ident}.spv"));
                 std::fs::write(&spv, artifact.as_binary_u8()).unwrap();
                 writeln!(consts, "pub const {ident}: &[u8] = include_bytes!({:?});", spv.display().to_string())

@@ -7,8 +7,8 @@ use anyhow::{bail, Context as _, Result};
 use clap::{Args, Parser, Subcommand};
 
 use vct::gpu::{Context, ContextOptions, Feature, Timing};
-use vct::render::{RenderOptions, Renderer, Tracing, View};
 use vct::reference::coverage::RefGrid;
+use vct::render::{RenderOptions, Renderer, Tracing, View};
 use vct::scene::Scene;
 use vct::voxel::{headless, Coverage, VoxelizeMethod};
 
@@ -31,8 +31,9 @@ enum Command {
     Devices,
 }
 
+/// The scene, image size and voxelization method (shared by `render` and `view`).
 #[derive(Args)]
-struct ViewArgs {
+struct SceneArgs {
     /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
     scene: Option<PathBuf>,
     #[arg(long)]
@@ -41,6 +42,20 @@ struct ViewArgs {
     height: Option<u32>,
     #[command(flatten)]
     method: MethodArgs,
+}
+
+impl SceneArgs {
+    fn load(&self) -> Result<Scene> {
+        let mut scene = load_scene(self.scene.as_deref())?;
+        scene.set_size(self.width, self.height)?;
+        Ok(scene)
+    }
+}
+
+#[derive(Args)]
+struct ViewArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
     /// Wait for vertical blank (FIFO) or not (MAILBOX/IMMEDIATE where offered).
     #[arg(long, value_enum, default_value = "on")]
     vsync: OnOff,
@@ -174,20 +189,14 @@ struct GpuArgs {
 
 #[derive(Args)]
 struct RenderArgs {
-    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
-    scene: Option<PathBuf>,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// Output PNG (tone-mapped).
     #[arg(long, default_value = "vct.png")]
     out: PathBuf,
     /// Also write the linear radiance as OpenEXR.
     #[arg(long)]
     exr: Option<PathBuf>,
-    #[arg(long)]
-    width: Option<u32>,
-    #[arg(long)]
-    height: Option<u32>,
-    #[command(flatten)]
-    method: MethodArgs,
     /// What to show: full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL.
     #[arg(long, default_value = "full")]
     view: View,
@@ -241,14 +250,19 @@ fn print_timings(timings: &[Timing]) {
 }
 
 fn render(args: RenderArgs) -> Result<()> {
-    let mut scene = load_scene(args.scene.as_deref())?;
-    scene.set_size(args.width, args.height)?;
+    let scene = args.scene.load()?;
     let ctx = open_device(&args.gpu)?;
     let tracing = match args.tracing {
         TracingArg::Forward => Tracing::Forward,
         TracingArg::Deferred => Tracing::Deferred,
     };
-    let options = RenderOptions { method: args.method.method()?, resolution: args.method.res, view: args.view, gi: !args.no_gi, tracing };
+    let options = RenderOptions {
+        method: args.scene.method.method()?,
+        resolution: args.scene.method.res,
+        view: args.view,
+        gi: !args.no_gi,
+        tracing,
+    };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
         println!("note: {n}");
@@ -274,7 +288,8 @@ fn render(args: RenderArgs) -> Result<()> {
             "height": frame.height,
             "passes": timings,
         });
-        std::fs::write(path, serde_json::to_string_pretty(&json)?).with_context(|| format!("writing {}", path.display()))?;
+        std::fs::write(path, serde_json::to_string_pretty(&json)?)
+            .with_context(|| format!("writing {}", path.display()))?;
         println!("wrote {}", path.display());
     }
     vct::output::write_png(&args.out, &frame)?;
@@ -297,7 +312,12 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
         println!("{n}");
     }
     let g = run.grid;
-    println!("method: {}   grid: {res}³, voxel {:.4} m, {:.1} MiB", method.label(), g.voxel, g.memory_bytes() as f64 / 1048576.0);
+    println!(
+        "method: {}   grid: {res}³, voxel {:.4} m, {:.1} MiB",
+        method.label(),
+        g.voxel,
+        g.memory_bytes() as f64 / 1048576.0
+    );
     let occupied = run.occupied();
     println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
     println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
@@ -321,12 +341,15 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
 }
 
 fn view(args: ViewArgs) -> Result<()> {
-    let mut scene = load_scene(args.scene.as_deref())?;
-    scene.set_size(args.width, args.height)?;
+    let scene = args.scene.load()?;
     let opts = ContextOptions::from_env(args.gpu.validation, args.gpu.device.clone());
     let report = vct::viewer::run(vct::viewer::ViewerOptions {
         scene,
-        render: RenderOptions { method: args.method.method()?, resolution: args.method.res, ..Default::default() },
+        render: RenderOptions {
+            method: args.scene.method.method()?,
+            resolution: args.scene.method.res,
+            ..Default::default()
+        },
         vsync: args.vsync == OnOff::On,
         validation: opts.validation,
         device: opts.device,
@@ -342,7 +365,11 @@ fn view(args: ViewArgs) -> Result<()> {
         report.gpu_bytes_end as f64 / 1048576.0
     );
     if report.validation_errors + report.validation_warnings > 0 {
-        bail!("the validation layer reported {} error(s) and {} warning(s)", report.validation_errors, report.validation_warnings);
+        bail!(
+            "the validation layer reported {} error(s) and {} warning(s)",
+            report.validation_errors,
+            report.validation_warnings
+        );
     }
     Ok(())
 }

@@ -102,11 +102,8 @@ fn missing_or_broken_texture_is_a_warning_and_a_flat_colour() {
 }
 
 fn vct(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_vct"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", "/tmp")
-        .output()
-        .expect("run vct");
+    let out =
+        Command::new(env!("CARGO_BIN_EXE_vct")).args(args).env("XDG_RUNTIME_DIR", "/tmp").output().expect("run vct");
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(!stderr.contains("panicked"), "vct panicked: {stderr}");
     (out.status.code().unwrap_or(-1), stderr)

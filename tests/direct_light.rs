@@ -74,7 +74,12 @@ fn default_scene_has_light_shadows_and_coloured_walls() {
             }
         }
     }
-    assert!(shadowed.len() > 20 && lit_floor.len() > 100, "{} shadowed, {} lit floor pixels", shadowed.len(), lit_floor.len());
+    assert!(
+        shadowed.len() > 20 && lit_floor.len() > 100,
+        "{} shadowed, {} lit floor pixels",
+        shadowed.len(),
+        lit_floor.len()
+    );
     let max_shadowed = shadowed.iter().cloned().fold(0.0, f32::max);
     let min_lit = lit_floor.iter().cloned().fold(f32::INFINITY, f32::min);
     assert!(max_shadowed < 0.05 * min_lit, "shadowed floor {max_shadowed} vs lit floor {min_lit}");

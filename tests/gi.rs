@@ -38,8 +38,9 @@ fn every_mip_level_is_the_box_filter_of_the_level_below() {
     let r = Renderer::new(&ctx, Scene::embedded_default().unwrap(), options(View::Full, 32)).unwrap();
     r.render().unwrap();
     let vol = &r.radiance.radiance;
-    let levels: Vec<Vec<f32>> =
-        (0..r.radiance.levels).map(|l| f16s(&gpu::read_image(&ctx, vol, vk::ImageLayout::GENERAL, l).unwrap())).collect();
+    let levels: Vec<Vec<f32>> = (0..r.radiance.levels)
+        .map(|l| f16s(&gpu::read_image(&ctx, vol, vk::ImageLayout::GENERAL, l).unwrap()))
+        .collect();
     assert!(levels[0].iter().any(|&v| v > 0.0), "level 0 is empty: nothing was injected");
     for l in 1..levels.len() {
         let n = (32u32 >> l) as usize;
@@ -55,7 +56,10 @@ fn every_mip_level_is_the_box_filter_of_the_level_below() {
                         }
                         let want = sum / 8.0;
                         let got = levels[l][4 * (x + n * (y + n * z)) + c];
-                        assert!((got - want).abs() <= want.abs() * 2e-3 + 1e-5, "level {l} ({x},{y},{z}) channel {c}: {got} vs {want}");
+                        assert!(
+                            (got - want).abs() <= want.abs() * 2e-3 + 1e-5,
+                            "level {l} ({x},{y},{z}) channel {c}: {got} vs {want}"
+                        );
                     }
                 }
             }
@@ -135,7 +139,12 @@ fn gpu_cone_tracing_agrees_with_the_cpu_model() {
     let image = Image::new(
         &ctx,
         "synthetic radiance",
-        ImageDesc::d3(vk::Format::R16G16B16A16_SFLOAT, 16, vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST).mips(5),
+        ImageDesc::d3(
+            vk::Format::R16G16B16A16_SFLOAT,
+            16,
+            vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+        )
+        .mips(5),
     )
     .unwrap();
     let data: Vec<Vec<u8>> = volume
@@ -158,10 +167,21 @@ fn gpu_cone_tracing_agrees_with_the_cpu_model() {
         (Vec3::new(0.4, 0.6, 0.4), Vec3::new(-1.0, 1.0, 0.5), 0.2),
     ] {
         let dir = dir.normalize();
-        probes.push(Probe { uvw_aperture: start.extend(aperture).into(), normal: dir.extend(0.0).into(), dir: dir.extend(0.0).into() });
+        probes.push(Probe {
+            uvw_aperture: start.extend(aperture).into(),
+            normal: dir.extend(0.0).into(),
+            dir: dir.extend(0.0).into(),
+        });
     }
     let probe_buf = Buffer::from_slice(&ctx, "probes", vk::BufferUsageFlags::STORAGE_BUFFER, &probes).unwrap();
-    let results = Buffer::new(&ctx, "probe results", 16 * probes.len() as u64, vk::BufferUsageFlags::STORAGE_BUFFER, MemoryLocation::GpuToCpu).unwrap();
+    let results = Buffer::new(
+        &ctx,
+        "probe results",
+        16 * probes.len() as u64,
+        vk::BufferUsageFlags::STORAGE_BUFFER,
+        MemoryLocation::GpuToCpu,
+    )
+    .unwrap();
     let sampler = Sampler::linear_border(&ctx, "probe sampler").unwrap();
     let c = vk::ShaderStageFlags::COMPUTE;
     let set = DescriptorSet::new(
@@ -177,20 +197,39 @@ fn gpu_cone_tracing_agrees_with_the_cpu_model() {
     set.write_sampled(0, image.view.raw, sampler.raw);
     set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &probe_buf);
     set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &results);
-    let pipeline = Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 24).unwrap();
-    let push = ProbePush { steps: params.steps, bias: params.bias, start: params.start, lod_offset: params.lod_offset, resolution: 16.0, count: probes.len() as u32 };
+    let pipeline =
+        Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 24).unwrap();
+    let push = ProbePush {
+        steps: params.steps,
+        bias: params.bias,
+        start: params.start,
+        lod_offset: params.lod_offset,
+        resolution: 16.0,
+        count: probes.len() as u32,
+    };
     ctx.submit_and_wait("cone probes", |cmd| {
         pipeline.bind(cmd, &[set.raw]);
         pipeline.push(cmd, &push);
         gpu::dispatch(&ctx, cmd, [probes.len() as u32, 1, 1], [vct::config::WORKGROUP_1D, 1, 1]);
-        gpu::memory_barrier(&ctx, cmd, (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE), (vk::PipelineStageFlags2::HOST, vk::AccessFlags2::HOST_READ));
+        gpu::memory_barrier(
+            &ctx,
+            cmd,
+            (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE),
+            (vk::PipelineStageFlags2::HOST, vk::AccessFlags2::HOST_READ),
+        );
     })
     .unwrap();
     let gpu_out: &[Vec4] = bytemuck::cast_slice(results.read());
     let mut lit = 0;
     for (p, g) in probes.iter().zip(gpu_out) {
         let uvw = Vec4::from(p.uvw_aperture);
-        let cpu = volume.trace_cone(uvw.truncate(), Vec4::from(p.normal).truncate(), Vec4::from(p.dir).truncate(), uvw.w, params);
+        let cpu = volume.trace_cone(
+            uvw.truncate(),
+            Vec4::from(p.normal).truncate(),
+            Vec4::from(p.dir).truncate(),
+            uvw.w,
+            params,
+        );
         let err = (*g - cpu).abs().max_element();
         assert!(err <= 0.01 + 0.01 * cpu.abs().max_element(), "probe {p:?}: GPU {g} vs CPU {cpu}");
         lit += (cpu.x > 0.1) as usize;
@@ -269,7 +308,12 @@ fn tessellated_and_rasterized_voxels_give_nearly_the_same_image() {
     tess.method = VoxelizeMethod::tess();
     let a = render(scene.clone(), tess);
     let b = render(scene, options(View::Full, 64));
-    let diffs: Vec<f32> = a.ldr.chunks_exact(4).zip(b.ldr.chunks_exact(4)).map(|(p, q)| (0..3).map(|c| (p[c] as f32 - q[c] as f32).abs()).fold(0.0, f32::max)).collect();
+    let diffs: Vec<f32> = a
+        .ldr
+        .chunks_exact(4)
+        .zip(b.ldr.chunks_exact(4))
+        .map(|(p, q)| (0..3).map(|c| (p[c] as f32 - q[c] as f32).abs()).fold(0.0, f32::max))
+        .collect();
     let mean = diffs.iter().sum::<f32>() / diffs.len() as f32;
     let mut sorted = diffs.clone();
     sorted.sort_by(f32::total_cmp);
@@ -287,7 +331,10 @@ fn volume_views_show_the_voxels_and_the_radiance_mips() {
     let radiance = render(scene.clone(), options(View::Radiance(1), 32));
     let floor = around(&scene, &radiance, Vec3::new(-1.0, 0.0, 2.0));
     let ceiling = around(&scene, &radiance, Vec3::new(0.5, 5.5, 1.5));
-    assert!(floor.x > 0.1 && ceiling.max_element() < 1e-3, "radiance level 1: lit floor {floor}, unlit ceiling {ceiling}");
+    assert!(
+        floor.x > 0.1 && ceiling.max_element() < 1e-3,
+        "radiance level 1: lit floor {floor}, unlit ceiling {ceiling}"
+    );
 }
 
 #[test]
@@ -298,7 +345,8 @@ fn hardware_coverage_is_a_clear_error_where_the_extension_is_missing() {
     }
     let mut o = options(View::Full, 32);
     o.method = VoxelizeMethod::raster(Coverage::Hardware);
-    let err = Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).err().expect("hw coverage must fail on this device");
+    let err =
+        Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).err().expect("hw coverage must fail on this device");
     assert!(err.to_string().contains("VK_EXT_conservative_rasterization"), "{err}");
 }
 
@@ -310,7 +358,8 @@ fn deferred_tracing_renders_what_forward_tracing_renders() {
     o.tracing = vct::render::Tracing::Forward;
     let forward = render(scene, o);
     let worst = forward.ldr.iter().zip(&deferred.ldr).map(|(a, b)| (*a as i32 - *b as i32).abs()).max().unwrap();
-    let mean = forward.ldr.iter().zip(&deferred.ldr).map(|(a, b)| (*a as i32 - *b as i32).abs()).sum::<i32>() as f32 / forward.ldr.len() as f32;
+    let mean = forward.ldr.iter().zip(&deferred.ldr).map(|(a, b)| (*a as i32 - *b as i32).abs()).sum::<i32>() as f32
+        / forward.ldr.len() as f32;
     println!("forward vs deferred: mean |ΔLDR| {mean:.4}, worst {worst}");
     assert!(mean < 0.5 && worst <= 40, "mean {mean}, worst {worst}");
 }

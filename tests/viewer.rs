@@ -53,7 +53,20 @@ fn viewer_frames_match_the_headless_render() {
 fn resize_recreates_the_swapchain_cleanly() {
     let shot = out("resized.png");
     let text = run(
-        &["view", "--frames", "24", "--resize-to", "200x150", "--res", "16", "--voxelizer", "raster", "--validation", "--screenshot", shot.to_str().unwrap()],
+        &[
+            "view",
+            "--frames",
+            "24",
+            "--resize-to",
+            "200x150",
+            "--res",
+            "16",
+            "--voxelizer",
+            "raster",
+            "--validation",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
         true,
     );
     assert!(text.contains("frames: 24"), "{text}");

@@ -155,7 +155,12 @@ fn shared_voxel_averages_red_and_green() {
         let centre = run.albedo[run.grid.index(10, 10, 10)];
         let [r, g, b] = unpack_rgb(centre);
         assert!(centre >> 24 > 0, "{}: voxel not written", method.label());
-        assert!((0.25..=0.75).contains(&r) && (0.25..=0.75).contains(&g) && b < 0.05, "{}: {:?}", method.label(), [r, g, b]);
+        assert!(
+            (0.25..=0.75).contains(&r) && (0.25..=0.75).contains(&g) && b < 0.05,
+            "{}: {:?}",
+            method.label(),
+            [r, g, b]
+        );
     }
     common::assert_clean(&ctx);
 }
@@ -169,7 +174,12 @@ fn voxel_view_shows_the_coloured_walls() {
     let (l, r) = (common::pixel_of(&scene, v(-2.75, 2.0, 0.0)), common::pixel_of(&scene, v(2.75, 2.0, 0.0)));
     let [lr, lg, _] = common::ldr(&frame, l.0, l.1);
     let [rr, rg, _] = common::ldr(&frame, r.0, r.1);
-    assert!(lr > 2 * lg && rg > 2 * rr, "left {:?}, right {:?}", common::ldr(&frame, l.0, l.1), common::ldr(&frame, r.0, r.1));
+    assert!(
+        lr > 2 * lg && rg > 2 * rr,
+        "left {:?}, right {:?}",
+        common::ldr(&frame, l.0, l.1),
+        common::ldr(&frame, r.0, r.1)
+    );
     common::assert_clean(&ctx);
 }
 

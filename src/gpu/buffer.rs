@@ -61,15 +61,15 @@ impl Buffer {
         Ok(buf)
     }
 
-    fn mapped(&self) -> &mut [u8] {
+    fn mapped_ptr(&self) -> *mut u8 {
         let a = self.allocation.as_ref().expect("buffer allocation lives until drop");
-        let ptr = a.mapped_ptr().expect("buffer is host-visible").as_ptr() as *mut u8;
-        unsafe { std::slice::from_raw_parts_mut(ptr, self.size as usize) }
+        a.mapped_ptr().expect("buffer is host-visible").as_ptr() as *mut u8
     }
 
-    /// Writes bytes into a host-visible buffer at `offset`.
+    /// Writes bytes into a host-visible buffer at `offset` (the GPU must not be using it).
     pub fn write(&self, offset: usize, bytes: &[u8]) {
-        self.mapped()[offset..offset + bytes.len()].copy_from_slice(bytes);
+        assert!(offset + bytes.len() <= self.size as usize, "write past the end of '{}'", self.name);
+        unsafe { std::ptr::copy_nonoverlapping(bytes.as_ptr(), self.mapped_ptr().add(offset), bytes.len()) };
     }
 
     pub fn write_pod<T: bytemuck::Pod>(&self, value: &T) {
@@ -78,7 +78,7 @@ impl Buffer {
 
     /// Reads a host-visible buffer.
     pub fn read(&self) -> &[u8] {
-        self.mapped()
+        unsafe { std::slice::from_raw_parts(self.mapped_ptr(), self.size as usize) }
     }
 }
 

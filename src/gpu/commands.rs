@@ -24,13 +24,13 @@ pub fn memory_barrier(
     unsafe { ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().memory_barriers(&b)) };
 }
 
-/// A layout transition (and memory dependency) over the given mips of an image.
+/// A layout transition (and memory dependency) of a subresource range of a raw image.
 #[allow(clippy::too_many_arguments)]
-pub fn image_barrier_mips(
+pub fn layout_barrier(
     ctx: &Context,
     cmd: vk::CommandBuffer,
-    image: &Image,
-    mips: std::ops::Range<u32>,
+    image: vk::Image,
+    range: vk::ImageSubresourceRange,
     old: vk::ImageLayout,
     new: vk::ImageLayout,
     src: (vk::PipelineStageFlags2, vk::AccessFlags2),
@@ -45,15 +45,31 @@ pub fn image_barrier_mips(
         .new_layout(new)
         .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
         .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-        .image(image.raw)
-        .subresource_range(vk::ImageSubresourceRange {
-            aspect_mask: aspect_of(image.desc.format),
-            base_mip_level: mips.start,
-            level_count: mips.end - mips.start,
-            base_array_layer: 0,
-            layer_count: 1,
-        })];
+        .image(image)
+        .subresource_range(range)];
     unsafe { ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&b)) };
+}
+
+/// A layout transition (and memory dependency) over the given mips of an image.
+#[allow(clippy::too_many_arguments)]
+pub fn image_barrier_mips(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    image: &Image,
+    mips: std::ops::Range<u32>,
+    old: vk::ImageLayout,
+    new: vk::ImageLayout,
+    src: (vk::PipelineStageFlags2, vk::AccessFlags2),
+    dst: (vk::PipelineStageFlags2, vk::AccessFlags2),
+) {
+    let range = vk::ImageSubresourceRange {
+        aspect_mask: aspect_of(image.desc.format),
+        base_mip_level: mips.start,
+        level_count: mips.end - mips.start,
+        base_array_layer: 0,
+        layer_count: 1,
+    };
+    layout_barrier(ctx, cmd, image.raw, range, old, new, src, dst);
 }
 
 /// A layout transition over every mip of an image.
@@ -82,7 +98,8 @@ pub fn dispatch(ctx: &Context, cmd: vk::CommandBuffer, threads: [u32; 3], local:
 
 /// Sets a full-size viewport and scissor.
 pub fn set_viewport(ctx: &Context, cmd: vk::CommandBuffer, width: u32, height: u32) {
-    let viewport = vk::Viewport { x: 0.0, y: 0.0, width: width as f32, height: height as f32, min_depth: 0.0, max_depth: 1.0 };
+    let viewport =
+        vk::Viewport { x: 0.0, y: 0.0, width: width as f32, height: height as f32, min_depth: 0.0, max_depth: 1.0 };
     let scissor = vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width, height } };
     unsafe {
         ctx.device.cmd_set_viewport(cmd, 0, &[viewport]);
@@ -149,51 +166,64 @@ pub fn render_multi(
 /// Blits `src` (GENERAL, already written; left in GENERAL) onto a swapchain image and leaves
 /// that image ready to present.
 pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: vk::Image, extent: vk::Extent2D) {
-    let range = vk::ImageSubresourceRange { aspect_mask: vk::ImageAspectFlags::COLOR, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: 1 };
-    let barrier = |old, new, src_stage, src_access, dst_stage, dst_access| {
-        vk::ImageMemoryBarrier2::default()
-            .src_stage_mask(src_stage)
-            .src_access_mask(src_access)
-            .dst_stage_mask(dst_stage)
-            .dst_access_mask(dst_access)
-            .old_layout(old)
-            .new_layout(new)
-            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-            .image(dst)
-            .subresource_range(range)
+    let range = vk::ImageSubresourceRange {
+        aspect_mask: vk::ImageAspectFlags::COLOR,
+        base_mip_level: 0,
+        level_count: 1,
+        base_array_layer: 0,
+        layer_count: 1,
     };
-    let to_dst = [barrier(
-        vk::ImageLayout::UNDEFINED,
-        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-        vk::PipelineStageFlags2::ALL_COMMANDS,
-        vk::AccessFlags2::NONE,
-        vk::PipelineStageFlags2::ALL_TRANSFER,
-        vk::AccessFlags2::TRANSFER_WRITE,
-    )];
-    let to_present = [barrier(
-        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-        vk::ImageLayout::PRESENT_SRC_KHR,
-        vk::PipelineStageFlags2::ALL_TRANSFER,
-        vk::AccessFlags2::TRANSFER_WRITE,
-        vk::PipelineStageFlags2::ALL_COMMANDS,
-        vk::AccessFlags2::NONE,
-    )];
+    let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
+    let none = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::NONE);
     let e = src.desc.extent;
-    let sub = vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 };
+    let sub = vk::ImageSubresourceLayers {
+        aspect_mask: vk::ImageAspectFlags::COLOR,
+        mip_level: 0,
+        base_array_layer: 0,
+        layer_count: 1,
+    };
     let blit = [vk::ImageBlit::default()
         .src_subresource(sub)
         .src_offsets([vk::Offset3D::default(), vk::Offset3D { x: e.width as i32, y: e.height as i32, z: 1 }])
         .dst_subresource(sub)
-        .dst_offsets([vk::Offset3D::default(), vk::Offset3D { x: extent.width as i32, y: extent.height as i32, z: 1 }])];
+        .dst_offsets([
+            vk::Offset3D::default(),
+            vk::Offset3D { x: extent.width as i32, y: extent.height as i32, z: 1 },
+        ])];
     let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
     let read = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
     image_barrier(ctx, cmd, src, vk::ImageLayout::GENERAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, any, read);
+    layout_barrier(
+        ctx,
+        cmd,
+        dst,
+        range,
+        vk::ImageLayout::UNDEFINED,
+        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+        none,
+        transfer_w,
+    );
     unsafe {
-        ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&to_dst));
-        ctx.device.cmd_blit_image(cmd, src.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, dst, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &blit, vk::Filter::NEAREST);
-        ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&to_present));
-    }
+        ctx.device.cmd_blit_image(
+            cmd,
+            src.raw,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            dst,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            &blit,
+            vk::Filter::NEAREST,
+        )
+    };
+    layout_barrier(
+        ctx,
+        cmd,
+        dst,
+        range,
+        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+        vk::ImageLayout::PRESENT_SRC_KHR,
+        transfer_w,
+        none,
+    );
     image_barrier(ctx, cmd, src, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::ImageLayout::GENERAL, read, any);
 }
 
@@ -205,7 +235,8 @@ pub fn upload_buffer<T: bytemuck::Pod>(
     data: &[T],
 ) -> Result<Buffer> {
     let staging = Buffer::from_slice(ctx, &format!("{name} staging"), vk::BufferUsageFlags::TRANSFER_SRC, data)?;
-    let buffer = Buffer::new(ctx, name, staging.size, usage | vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuOnly)?;
+    let buffer =
+        Buffer::new(ctx, name, staging.size, usage | vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuOnly)?;
     ctx.submit_and_wait(&format!("upload {name}"), |cmd| unsafe {
         let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: staging.size }];
         ctx.device.cmd_copy_buffer(cmd, staging.raw, buffer.raw, &region);
@@ -216,7 +247,8 @@ pub fn upload_buffer<T: bytemuck::Pod>(
 /// Uploads RGBA8 texels into mip 0 of a 2D image, builds its mip chain by blits, and leaves
 /// every level in SHADER_READ_ONLY_OPTIMAL.
 pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result<()> {
-    let staging = Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, rgba8)?;
+    let staging =
+        Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, rgba8)?;
     let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
     let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
     let transfer_r = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
@@ -224,39 +256,106 @@ pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result
     let levels = image.desc.mip_levels;
     ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
         let d = &ctx.device;
-        image_barrier(ctx, cmd, image, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL, none, transfer_w);
+        image_barrier(
+            ctx,
+            cmd,
+            image,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            none,
+            transfer_w,
+        );
         let region = [vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 })
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
             .image_extent(image.desc.extent)];
         d.cmd_copy_buffer_to_image(cmd, staging.raw, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &region);
         for level in 1..levels {
-            image_barrier_mips(ctx, cmd, image, level - 1..level, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, transfer_w, transfer_r);
+            image_barrier_mips(
+                ctx,
+                cmd,
+                image,
+                level - 1..level,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                transfer_w,
+                transfer_r,
+            );
             let (s, t) = (image.extent_at(level - 1), image.extent_at(level));
-            let sub = |m| vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: m, base_array_layer: 0, layer_count: 1 };
+            let sub = |m| vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: m,
+                base_array_layer: 0,
+                layer_count: 1,
+            };
             let blit = [vk::ImageBlit::default()
                 .src_subresource(sub(level - 1))
                 .src_offsets([vk::Offset3D::default(), vk::Offset3D { x: s.width as i32, y: s.height as i32, z: 1 }])
                 .dst_subresource(sub(level))
                 .dst_offsets([vk::Offset3D::default(), vk::Offset3D { x: t.width as i32, y: t.height as i32, z: 1 }])];
-            d.cmd_blit_image(cmd, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &blit, vk::Filter::LINEAR);
+            d.cmd_blit_image(
+                cmd,
+                image.raw,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                image.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &blit,
+                vk::Filter::LINEAR,
+            );
         }
         if levels > 1 {
-            image_barrier_mips(ctx, cmd, image, 0..levels - 1, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, transfer_r, shader_r);
+            image_barrier_mips(
+                ctx,
+                cmd,
+                image,
+                0..levels - 1,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                transfer_r,
+                shader_r,
+            );
         }
-        image_barrier_mips(ctx, cmd, image, levels - 1..levels, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, transfer_w, shader_r);
+        image_barrier_mips(
+            ctx,
+            cmd,
+            image,
+            levels - 1..levels,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            transfer_w,
+            shader_r,
+        );
     })
 }
 
 /// Uploads every mip level of an image from `levels` (tightly packed texels) and leaves it in
 /// `final_layout`.
-pub fn upload_levels(ctx: &Arc<Context>, image: &Image, levels: &[Vec<u8>], final_layout: vk::ImageLayout) -> Result<()> {
+pub fn upload_levels(
+    ctx: &Arc<Context>,
+    image: &Image,
+    levels: &[Vec<u8>],
+    final_layout: vk::ImageLayout,
+) -> Result<()> {
     let all: Vec<u8> = levels.concat();
-    let staging = Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, &all)?;
+    let staging =
+        Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, &all)?;
     let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
     let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
     let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ);
     ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
-        image_barrier(ctx, cmd, image, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL, none, transfer_w);
+        image_barrier(
+            ctx,
+            cmd,
+            image,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            none,
+            transfer_w,
+        );
         let mut offset = 0u64;
         let regions: Vec<_> = levels
             .iter()
@@ -264,13 +363,24 @@ pub fn upload_levels(ctx: &Arc<Context>, image: &Image, levels: &[Vec<u8>], fina
             .map(|(m, data)| {
                 let r = vk::BufferImageCopy::default()
                     .buffer_offset(offset)
-                    .image_subresource(vk::ImageSubresourceLayers { aspect_mask: aspect_of(image.desc.format), mip_level: m as u32, base_array_layer: 0, layer_count: 1 })
+                    .image_subresource(vk::ImageSubresourceLayers {
+                        aspect_mask: aspect_of(image.desc.format),
+                        mip_level: m as u32,
+                        base_array_layer: 0,
+                        layer_count: 1,
+                    })
                     .image_extent(image.extent_at(m as u32));
                 offset += data.len() as u64;
                 r
             })
             .collect();
-        ctx.device.cmd_copy_buffer_to_image(cmd, staging.raw, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &regions);
+        ctx.device.cmd_copy_buffer_to_image(
+            cmd,
+            staging.raw,
+            image.raw,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            &regions,
+        );
         image_barrier(ctx, cmd, image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, final_layout, transfer_w, any);
     })
 }
@@ -279,16 +389,51 @@ pub fn upload_levels(ctx: &Arc<Context>, image: &Image, levels: &[Vec<u8>], fina
 pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mip: u32) -> Result<Vec<u8>> {
     let e = image.extent_at(mip);
     let size = e.width as u64 * e.height as u64 * e.depth as u64 * super::image::texel_size(image.desc.format) as u64;
-    let staging = Buffer::new(ctx, &format!("{} readback", image.name), size, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
+    let staging = Buffer::new(
+        ctx,
+        &format!("{} readback", image.name),
+        size,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
     let all = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_WRITE | vk::AccessFlags2::MEMORY_READ);
     let transfer_r = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
     ctx.submit_and_wait(&format!("read back {}", image.name), |cmd| unsafe {
-        image_barrier_mips(ctx, cmd, image, mip..mip + 1, layout, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, all, transfer_r);
+        image_barrier_mips(
+            ctx,
+            cmd,
+            image,
+            mip..mip + 1,
+            layout,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            all,
+            transfer_r,
+        );
         let region = [vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers { aspect_mask: aspect_of(image.desc.format), mip_level: mip, base_array_layer: 0, layer_count: 1 })
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: aspect_of(image.desc.format),
+                mip_level: mip,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
             .image_extent(e)];
-        ctx.device.cmd_copy_image_to_buffer(cmd, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, staging.raw, &region);
-        image_barrier_mips(ctx, cmd, image, mip..mip + 1, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, layout, transfer_r, all);
+        ctx.device.cmd_copy_image_to_buffer(
+            cmd,
+            image.raw,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            staging.raw,
+            &region,
+        );
+        image_barrier_mips(
+            ctx,
+            cmd,
+            image,
+            mip..mip + 1,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            layout,
+            transfer_r,
+            all,
+        );
         let host = [vk::MemoryBarrier2::default()
             .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
             .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)

@@ -61,9 +61,8 @@ unsafe extern "system" fn debug_callback(
 ) -> vk::Bool32 {
     let counter = &*(user as *const ValidationCounter);
     let message = (*data).message_as_c_str().map(|m| m.to_string_lossy()).unwrap_or_default();
-    let relevant = ty.intersects(
-        vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
-    );
+    let relevant =
+        ty.intersects(vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE);
     if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
         counter.errors.fetch_add(1, Ordering::SeqCst);
         log::error!("[vulkan] {message}");
@@ -158,8 +157,11 @@ impl Context {
         unsafe { ash::Entry::load() }.map_err(|e| Error::Loader(e.to_string()))
     }
 
-    fn create_instance(entry: &ash::Entry, opts: &ContextOptions, counter: &Arc<ValidationCounter>)
-        -> Result<(ash::Instance, bool)> {
+    fn create_instance(
+        entry: &ash::Entry,
+        opts: &ContextOptions,
+        counter: &Arc<ValidationCounter>,
+    ) -> Result<(ash::Instance, bool)> {
         let app = vk::ApplicationInfo::default()
             .application_name(c"vct")
             .engine_name(c"vct")
@@ -241,9 +243,7 @@ impl Context {
             .into_iter()
             .map(|pd| (pd, unsafe { query_device(&instance, pd) }))
             .filter(|(_, i)| i.api_version >= vk::API_VERSION_1_3)
-            .filter(|(_, i)| {
-                opts.device.as_ref().is_none_or(|d| i.name.to_lowercase().contains(&d.to_lowercase()))
-            })
+            .filter(|(_, i)| opts.device.as_ref().is_none_or(|d| i.name.to_lowercase().contains(&d.to_lowercase())))
             .collect();
         candidates.sort_by_key(|(_, i)| i.rank());
         let Some((physical, info)) = candidates.into_iter().next() else {
@@ -265,8 +265,7 @@ impl Context {
         let queue_family = families
             .iter()
             .position(|f| {
-                f.queue_flags.contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE)
-                    && f.timestamp_valid_bits > 0
+                f.queue_flags.contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0
             })
             .ok_or_else(|| Error::MissingFeature {
                 device: info.name.clone(),
@@ -274,7 +273,8 @@ impl Context {
                 needed_by: "vct",
             })? as u32;
         let priorities = [1.0];
-        let queue_info = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
+        let queue_info =
+            [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
         let mut ext_ptrs: Vec<*const c_char> = Vec::new();
         if opts.swapchain {
             ext_ptrs.push(ash::khr::swapchain::NAME.as_ptr());

@@ -59,10 +59,8 @@ impl DescriptorSet {
             d.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&vk_bindings), None)
         }
         .vk("vkCreateDescriptorSetLayout")?;
-        let sizes: Vec<_> = bindings
-            .iter()
-            .map(|b| vk::DescriptorPoolSize { ty: b.ty, descriptor_count: b.count * count })
-            .collect();
+        let sizes: Vec<_> =
+            bindings.iter().map(|b| vk::DescriptorPoolSize { ty: b.ty, descriptor_count: b.count * count }).collect();
         let pool = unsafe {
             d.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(count).pool_sizes(&sizes), None)
         }
@@ -114,7 +112,11 @@ impl DescriptorSet {
             set,
             binding,
             vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-            &[vk::DescriptorImageInfo { sampler, image_view: view, image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL }],
+            &[vk::DescriptorImageInfo {
+                sampler,
+                image_view: view,
+                image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            }],
         );
     }
 
@@ -123,7 +125,11 @@ impl DescriptorSet {
         self.write_images(
             binding,
             vk::DescriptorType::STORAGE_IMAGE,
-            &[vk::DescriptorImageInfo { sampler: vk::Sampler::null(), image_view: view, image_layout: vk::ImageLayout::GENERAL }],
+            &[vk::DescriptorImageInfo {
+                sampler: vk::Sampler::null(),
+                image_view: view,
+                image_layout: vk::ImageLayout::GENERAL,
+            }],
         );
     }
 }

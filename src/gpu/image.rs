@@ -71,19 +71,26 @@ pub struct ImageView {
 }
 
 impl ImageView {
-    fn new(ctx: &Arc<Context>, image: vk::Image, desc: &ImageDesc, base_mip: u32, mips: u32, name: &str) -> Result<Self> {
-        let view_type = if desc.ty == vk::ImageType::TYPE_3D { vk::ImageViewType::TYPE_3D } else { vk::ImageViewType::TYPE_2D };
-        let info = vk::ImageViewCreateInfo::default()
-            .image(image)
-            .view_type(view_type)
-            .format(desc.format)
-            .subresource_range(vk::ImageSubresourceRange {
-                aspect_mask: aspect_of(desc.format),
-                base_mip_level: base_mip,
-                level_count: mips,
-                base_array_layer: 0,
-                layer_count: 1,
-            });
+    fn new(
+        ctx: &Arc<Context>,
+        image: vk::Image,
+        desc: &ImageDesc,
+        base_mip: u32,
+        mips: u32,
+        name: &str,
+    ) -> Result<Self> {
+        let view_type =
+            if desc.ty == vk::ImageType::TYPE_3D { vk::ImageViewType::TYPE_3D } else { vk::ImageViewType::TYPE_2D };
+        let info =
+            vk::ImageViewCreateInfo::default().image(image).view_type(view_type).format(desc.format).subresource_range(
+                vk::ImageSubresourceRange {
+                    aspect_mask: aspect_of(desc.format),
+                    base_mip_level: base_mip,
+                    level_count: mips,
+                    base_array_layer: 0,
+                    layer_count: 1,
+                },
+            );
         let raw = unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
         ctx.set_name(raw, name);
         Ok(ImageView { ctx: ctx.clone(), raw })
@@ -161,7 +168,11 @@ impl Image {
 
     pub fn extent_at(&self, level: u32) -> vk::Extent3D {
         let e = self.desc.extent;
-        vk::Extent3D { width: (e.width >> level).max(1), height: (e.height >> level).max(1), depth: (e.depth >> level).max(1) }
+        vk::Extent3D {
+            width: (e.width >> level).max(1),
+            height: (e.height >> level).max(1),
+            depth: (e.depth >> level).max(1),
+        }
     }
 
     pub fn range(&self) -> vk::ImageSubresourceRange {

@@ -36,8 +36,10 @@ struct Module {
 
 impl Module {
     fn new(ctx: &Arc<Context>, spirv: &[u8]) -> Result<Self> {
-        let words = ash::util::read_spv(&mut std::io::Cursor::new(spirv))
-            .map_err(|_| crate::error::Error::Vulkan { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
+        let words = ash::util::read_spv(&mut std::io::Cursor::new(spirv)).map_err(|_| crate::error::Error::Vulkan {
+            call: "read_spv",
+            result: vk::Result::ERROR_INVALID_SHADER_NV,
+        })?;
         let raw = unsafe { ctx.device.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&words), None) }
             .vk("vkCreateShaderModule")?;
         Ok(Module { ctx: ctx.clone(), raw })
@@ -134,9 +136,11 @@ pub struct Pipeline {
 
 fn create_layout(ctx: &Context, set_layouts: &[vk::DescriptorSetLayout], push: u32) -> Result<vk::PipelineLayout> {
     let ranges = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::ALL, offset: 0, size: push }];
-    let info = vk::PipelineLayoutCreateInfo::default()
-        .set_layouts(set_layouts)
-        .push_constant_ranges(if push > 0 { &ranges[..] } else { &[] });
+    let info = vk::PipelineLayoutCreateInfo::default().set_layouts(set_layouts).push_constant_ranges(if push > 0 {
+        &ranges[..]
+    } else {
+        &[]
+    });
     unsafe { ctx.device.create_pipeline_layout(&info, None) }.vk("vkCreatePipelineLayout")
 }
 
@@ -178,7 +182,11 @@ impl Pipeline {
             .zip(&modules)
             .zip(&spec_infos)
             .map(|((s, m), si)| {
-                vk::PipelineShaderStageCreateInfo::default().stage(s.stage).module(m.raw).name(ENTRY).specialization_info(si)
+                vk::PipelineShaderStageCreateInfo::default()
+                    .stage(s.stage)
+                    .module(m.raw)
+                    .name(ENTRY)
+                    .specialization_info(si)
             })
             .collect();
 
@@ -188,7 +196,11 @@ impl Pipeline {
                 bindings = [vk::VertexInputBindingDescription {
                     binding: 0,
                     stride: v.stride,
-                    input_rate: if desc.instanced { vk::VertexInputRate::INSTANCE } else { vk::VertexInputRate::VERTEX },
+                    input_rate: if desc.instanced {
+                        vk::VertexInputRate::INSTANCE
+                    } else {
+                        vk::VertexInputRate::VERTEX
+                    },
                 }];
                 vk::PipelineVertexInputStateCreateInfo::default()
                     .vertex_binding_descriptions(&bindings)
@@ -271,7 +283,13 @@ impl Pipeline {
 
     pub fn push<T: bytemuck::Pod>(&self, cmd: vk::CommandBuffer, value: &T) {
         unsafe {
-            self.ctx.device.cmd_push_constants(cmd, self.layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(value))
+            self.ctx.device.cmd_push_constants(
+                cmd,
+                self.layout,
+                vk::ShaderStageFlags::ALL,
+                0,
+                bytemuck::bytes_of(value),
+            )
         };
     }
 }

@@ -36,30 +36,51 @@ pub enum FrameOutcome {
 }
 
 impl Swapchain {
-    pub fn new(ctx: &Arc<Context>, window: &(impl HasDisplayHandle + HasWindowHandle), width: u32, height: u32, vsync: bool) -> Result<Self> {
+    pub fn new(
+        ctx: &Arc<Context>,
+        window: &(impl HasDisplayHandle + HasWindowHandle),
+        width: u32,
+        height: u32,
+        vsync: bool,
+    ) -> Result<Self> {
         let display = window.display_handle().map_err(|e| Error::Loader(format!("no display handle: {e}")))?.as_raw();
         let handle = window.window_handle().map_err(|e| Error::Loader(format!("no window handle: {e}")))?.as_raw();
-        let surface = unsafe { ash_window::create_surface(&ctx.entry, &ctx.instance, display, handle, None) }.vk("vkCreateSurfaceKHR")?;
+        let surface = unsafe { ash_window::create_surface(&ctx.entry, &ctx.instance, display, handle, None) }
+            .vk("vkCreateSurfaceKHR")?;
         let surface_loader = ash::khr::surface::Instance::new(&ctx.entry, &ctx.instance);
-        let supported = unsafe { surface_loader.get_physical_device_surface_support(ctx.physical, ctx.queue_family, surface) }
-            .vk("vkGetPhysicalDeviceSurfaceSupportKHR")?;
+        let supported =
+            unsafe { surface_loader.get_physical_device_surface_support(ctx.physical, ctx.queue_family, surface) }
+                .vk("vkGetPhysicalDeviceSurfaceSupportKHR")?;
         if !supported {
             unsafe { surface_loader.destroy_surface(surface, None) };
-            return Err(Error::MissingFeature { device: ctx.info.name.clone(), feature: "presentation to this window", needed_by: "the viewer" });
+            return Err(Error::MissingFeature {
+                device: ctx.info.name.clone(),
+                feature: "presentation to this window",
+                needed_by: "the viewer",
+            });
         }
         let loader = ash::khr::swapchain::Device::new(&ctx.instance, &ctx.device);
         let d = &ctx.device;
         let pool = unsafe {
             d.create_command_pool(
-                &vk::CommandPoolCreateInfo::default().queue_family_index(ctx.queue_family).flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER),
+                &vk::CommandPoolCreateInfo::default()
+                    .queue_family_index(ctx.queue_family)
+                    .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER),
                 None,
             )
         }
         .vk("vkCreateCommandPool")?;
-        let cmd = unsafe { d.allocate_command_buffers(&vk::CommandBufferAllocateInfo::default().command_pool(pool).command_buffer_count(1)) }
-            .vk("vkAllocateCommandBuffers")?[0];
-        let image_available = unsafe { d.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }.vk("vkCreateSemaphore")?;
-        let in_flight = unsafe { d.create_fence(&vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED), None) }.vk("vkCreateFence")?;
+        let cmd = unsafe {
+            d.allocate_command_buffers(
+                &vk::CommandBufferAllocateInfo::default().command_pool(pool).command_buffer_count(1),
+            )
+        }
+        .vk("vkAllocateCommandBuffers")?[0];
+        let image_available =
+            unsafe { d.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }.vk("vkCreateSemaphore")?;
+        let in_flight =
+            unsafe { d.create_fence(&vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED), None) }
+                .vk("vkCreateFence")?;
         let mut s = Swapchain {
             ctx: ctx.clone(),
             surface_loader,
@@ -88,15 +109,20 @@ impl Swapchain {
             .vk("vkGetPhysicalDeviceSurfaceCapabilitiesKHR")?;
         let formats = unsafe { self.surface_loader.get_physical_device_surface_formats(ctx.physical, self.surface) }
             .vk("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
-        let modes = unsafe { self.surface_loader.get_physical_device_surface_present_modes(ctx.physical, self.surface) }
-            .vk("vkGetPhysicalDeviceSurfacePresentModesKHR")?;
+        let modes =
+            unsafe { self.surface_loader.get_physical_device_surface_present_modes(ctx.physical, self.surface) }
+                .vk("vkGetPhysicalDeviceSurfacePresentModesKHR")?;
         // The renderer writes gamma-encoded 8-bit colour: present it as UNORM, not sRGB.
         let format = formats
             .iter()
             .find(|f| matches!(f.format, vk::Format::B8G8R8A8_UNORM | vk::Format::R8G8B8A8_UNORM))
             .or(formats.first())
             .copied()
-            .ok_or_else(|| Error::MissingFeature { device: ctx.info.name.clone(), feature: "a surface format", needed_by: "the viewer" })?;
+            .ok_or_else(|| Error::MissingFeature {
+                device: ctx.info.name.clone(),
+                feature: "a surface format",
+                needed_by: "the viewer",
+            })?;
         let mode = if self.vsync {
             vk::PresentModeKHR::FIFO
         } else {
@@ -143,7 +169,8 @@ impl Swapchain {
         }
         self.images = unsafe { self.loader.get_swapchain_images(self.raw) }.vk("vkGetSwapchainImagesKHR")?;
         for _ in &self.images {
-            let s = unsafe { ctx.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }.vk("vkCreateSemaphore")?;
+            let s = unsafe { ctx.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
+                .vk("vkCreateSemaphore")?;
             self.render_finished.push(s);
         }
         self.extent = extent;
@@ -153,7 +180,9 @@ impl Swapchain {
 
     /// Waits until the previous frame's commands have finished.
     pub fn wait_idle(&self) -> Result<()> {
-        match unsafe { self.ctx.device.wait_for_fences(&[self.in_flight], true, super::context::GPU_TIMEOUT_S * 1_000_000_000) } {
+        match unsafe {
+            self.ctx.device.wait_for_fences(&[self.in_flight], true, super::context::GPU_TIMEOUT_S * 1_000_000_000)
+        } {
             Ok(()) => Ok(()),
             Err(vk::Result::TIMEOUT) => Err(Error::Timeout("viewer frame".into(), super::context::GPU_TIMEOUT_S)),
             Err(result) => Err(Error::Vulkan { call: "vkWaitForFences", result }),
@@ -165,15 +194,20 @@ impl Swapchain {
     pub fn frame(&mut self, record: impl FnOnce(vk::CommandBuffer, vk::Image)) -> Result<FrameOutcome> {
         self.wait_idle()?;
         let d = &self.ctx.device;
-        let index = match unsafe { self.loader.acquire_next_image(self.raw, u64::MAX, self.image_available, vk::Fence::null()) } {
+        let index = match unsafe {
+            self.loader.acquire_next_image(self.raw, u64::MAX, self.image_available, vk::Fence::null())
+        } {
             Ok((i, _)) => i,
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => return Ok(FrameOutcome::OutOfDate),
             Err(result) => return Err(Error::Vulkan { call: "vkAcquireNextImageKHR", result }),
         };
         unsafe {
             d.reset_fences(&[self.in_flight]).vk("vkResetFences")?;
-            d.begin_command_buffer(self.cmd, &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT))
-                .vk("vkBeginCommandBuffer")?;
+            d.begin_command_buffer(
+                self.cmd,
+                &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+            )
+            .vk("vkBeginCommandBuffer")?;
         }
         record(self.cmd, self.images[index as usize]);
         let finished = self.render_finished[index as usize];
@@ -183,11 +217,16 @@ impl Swapchain {
             let stages = [vk::PipelineStageFlags::ALL_COMMANDS];
             let cmds = [self.cmd];
             let signal = [finished];
-            let submit = [vk::SubmitInfo::default().wait_semaphores(&wait).wait_dst_stage_mask(&stages).command_buffers(&cmds).signal_semaphores(&signal)];
+            let submit = [vk::SubmitInfo::default()
+                .wait_semaphores(&wait)
+                .wait_dst_stage_mask(&stages)
+                .command_buffers(&cmds)
+                .signal_semaphores(&signal)];
             d.queue_submit(self.ctx.queue, &submit, self.in_flight).vk("vkQueueSubmit")?;
             let swapchains = [self.raw];
             let indices = [index];
-            let present = vk::PresentInfoKHR::default().wait_semaphores(&signal).swapchains(&swapchains).image_indices(&indices);
+            let present =
+                vk::PresentInfoKHR::default().wait_semaphores(&signal).swapchains(&swapchains).image_indices(&indices);
             match self.loader.queue_present(self.ctx.queue, &present) {
                 Ok(false) => Ok(FrameOutcome::Presented),
                 Ok(true) | Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(FrameOutcome::OutOfDate),

@@ -97,7 +97,8 @@ pub fn median(frames: &[Vec<Timing>]) -> Vec<Timing> {
     first
         .iter()
         .map(|t| {
-            let mut ms: Vec<f64> = frames.iter().filter_map(|f| f.iter().find(|u| u.pass == t.pass)).map(|u| u.ms).collect();
+            let mut ms: Vec<f64> =
+                frames.iter().filter_map(|f| f.iter().find(|u| u.pass == t.pass)).map(|u| u.ms).collect();
             ms.sort_by(f64::total_cmp);
             Timing { pass: t.pass.clone(), ms: ms[ms.len() / 2] }
         })

@@ -38,7 +38,9 @@ impl MipVolume {
         let mut acc = Vec4::ZERO;
         for corner in 0..8 {
             let (dx, dy, dz) = (corner & 1, (corner >> 1) & 1, corner >> 2);
-            let w = if dx == 1 { f.x } else { 1.0 - f.x } * if dy == 1 { f.y } else { 1.0 - f.y } * if dz == 1 { f.z } else { 1.0 - f.z };
+            let w = if dx == 1 { f.x } else { 1.0 - f.x }
+                * if dy == 1 { f.y } else { 1.0 - f.y }
+                * if dz == 1 { f.z } else { 1.0 - f.z };
             acc += w * self.texel(level, bx + dx, by + dy, bz + dz);
         }
         acc

@@ -80,7 +80,9 @@ impl RefGrid {
     pub fn coverage(&self, triangles: &[[Vec3; 3]], eps: f64) -> Coverage {
         let n = self.n as i64;
         let len = (self.n as usize).pow(3);
-        let per_triangle: Vec<(Vec<(usize, bool)>, Vec<(usize, usize)>)> = triangles
+        // Per triangle: (voxel, required) hits and boundary-face pairs.
+        type Hits = (Vec<(usize, bool)>, Vec<(usize, usize)>);
+        let per_triangle: Vec<Hits> = triangles
             .par_iter()
             .map(|t| {
                 // Triangle in voxel units; skip non-finite input.
@@ -129,7 +131,10 @@ impl RefGrid {
                                     if triangle_box_overlap(p.map(|q| q - centre), h) {
                                         let mut below = c;
                                         below[a] -= 1;
-                                        pairs.push((self.index(below[0] as u32, below[1] as u32, below[2] as u32), here));
+                                        pairs.push((
+                                            self.index(below[0] as u32, below[1] as u32, below[2] as u32),
+                                            here,
+                                        ));
                                     }
                                 }
                             }
@@ -172,8 +177,7 @@ impl Coverage {
     pub fn accuracy(&self, occupied: &[bool]) -> Accuracy {
         assert_eq!(occupied.len(), self.required.len(), "grids differ in size");
         let (mut hit_req, mut req, mut occ, mut occ_allowed, mut union) = (0usize, 0usize, 0usize, 0usize, 0usize);
-        for i in 0..occupied.len() {
-            let (o, r, a) = (occupied[i], self.required[i], self.allowed[i]);
+        for ((&o, &r), &a) in occupied.iter().zip(&self.required).zip(&self.allowed) {
             req += r as usize;
             occ += o as usize;
             hit_req += (o && r) as usize;
@@ -229,7 +233,7 @@ mod tests {
             occupied[below] = true;
         }
         assert_eq!(c.accuracy(&occupied).recall, 1.0);
-        assert_eq!(c.accuracy(&vec![false; 64]).recall, 0.0);
+        assert_eq!(c.accuracy(&[false; 64]).recall, 0.0);
         // Inside a layer, every voxel under the triangle is required.
         let q = [Vec3::new(0.2, 0.2, 2.5), Vec3::new(3.8, 0.2, 2.5), Vec3::new(3.8, 3.8, 2.5)];
         let c = g.coverage(&[q], 1e-3);
@@ -238,7 +242,12 @@ mod tests {
 
     #[test]
     fn accuracy_figures() {
-        let c = Coverage { n: 1, required: vec![true, true, false, false], allowed: vec![true, true, true, false], pairs: vec![] };
+        let c = Coverage {
+            n: 1,
+            required: vec![true, true, false, false],
+            allowed: vec![true, true, true, false],
+            pairs: vec![],
+        };
         let a = c.accuracy(&[true, false, true, true]);
         assert!((a.recall - 0.5).abs() < 1e-12);
         assert!((a.precision - 2.0 / 3.0).abs() < 1e-12);

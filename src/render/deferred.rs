@@ -13,7 +13,9 @@ use super::shadow::ShadowPass;
 use super::Targets;
 use crate::config::WORKGROUP_2D;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage};
+use crate::gpu::{
+    self, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage,
+};
 
 const ALBEDO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 /// Normal and camera distance: 32-bit, so the rebuilt position is as exact as the forward one.
@@ -30,10 +32,18 @@ pub struct DeferredShadePass {
 }
 
 impl DeferredShadePass {
-    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass, radiance: &RadianceVolume, targets: &Targets) -> Result<Self> {
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &SceneGpu,
+        shadow: &ShadowPass,
+        radiance: &RadianceVolume,
+        targets: &Targets,
+    ) -> Result<Self> {
         let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::STORAGE;
-        let albedo = Image::new(ctx, "gbuffer albedo", ImageDesc::d2(ALBEDO_FORMAT, targets.width, targets.height, usage))?;
-        let normal = Image::new(ctx, "gbuffer normal", ImageDesc::d2(NORMAL_FORMAT, targets.width, targets.height, usage))?;
+        let albedo =
+            Image::new(ctx, "gbuffer albedo", ImageDesc::d2(ALBEDO_FORMAT, targets.width, targets.height, usage))?;
+        let normal =
+            Image::new(ctx, "gbuffer normal", ImageDesc::d2(NORMAL_FORMAT, targets.width, targets.height, usage))?;
         let mut desc = GraphicsDesc::new(
             "gbuffer",
             vec![
@@ -77,7 +87,15 @@ impl DeferredShadePass {
             &[scene.set.layout, scene.material_sets.layout, set.layout],
             0,
         )?;
-        Ok(DeferredShadePass { ctx: ctx.clone(), gbuffer_pipeline, shade_pipeline, set, albedo, normal, _shadow_sampler: shadow_sampler })
+        Ok(DeferredShadePass {
+            ctx: ctx.clone(),
+            gbuffer_pipeline,
+            shade_pipeline,
+            set,
+            albedo,
+            normal,
+            _shadow_sampler: shadow_sampler,
+        })
     }
 
     /// Depth and G-buffer in one geometry pass (it replaces the depth prepass).
@@ -89,9 +107,25 @@ impl DeferredShadePass {
         );
         let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
         let compute_r = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ);
-        gpu::image_barrier(ctx, cmd, &targets.depth, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, compute_r, depth_rw);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.depth,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+            compute_r,
+            depth_rw,
+        );
         for img in [&self.albedo, &self.normal] {
-            gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, compute_r, color_w);
+            gpu::image_barrier(
+                ctx,
+                cmd,
+                img,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                compute_r,
+                color_w,
+            );
         }
         let color: Vec<_> = [&self.albedo, &self.normal]
             .iter()
@@ -103,19 +137,38 @@ impl DeferredShadePass {
                     .store_op(vk::AttachmentStoreOp::STORE)
             })
             .collect();
-        gpu::render_multi(ctx, cmd, &color, Some((&targets.depth, vk::AttachmentLoadOp::CLEAR)), targets.width, targets.height, || {
-            self.gbuffer_pipeline.bind(cmd, &[scene.set.raw]);
-            scene.draw(cmd, self.gbuffer_pipeline.layout, true);
-        });
+        gpu::render_multi(
+            ctx,
+            cmd,
+            &color,
+            Some((&targets.depth, vk::AttachmentLoadOp::CLEAR)),
+            targets.width,
+            targets.height,
+            || {
+                self.gbuffer_pipeline.bind(cmd, &[scene.set.raw]);
+                scene.draw(cmd, self.gbuffer_pipeline.layout, true);
+            },
+        );
         for img in [&self.albedo, &self.normal] {
-            gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, vk::ImageLayout::GENERAL, color_w, compute_r);
+            gpu::image_barrier(
+                ctx,
+                cmd,
+                img,
+                vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                vk::ImageLayout::GENERAL,
+                color_w,
+                compute_r,
+            );
         }
     }
 
     /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL).
     pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let rw = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        let rw = (
+            vk::PipelineStageFlags2::COMPUTE_SHADER,
+            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
+        );
         gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
         self.shade_pipeline.bind(cmd, &[scene.set.raw]);
         self.shade_pipeline.bind_set(cmd, 2, self.set.raw);

@@ -25,15 +25,36 @@ impl FilterPass {
     pub fn new(ctx: &Arc<Context>, volume: &RadianceVolume) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
-        let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1)], volume.levels.saturating_sub(1))?;
-        let storage_info = |view| vk::DescriptorImageInfo { sampler: vk::Sampler::null(), image_view: view, image_layout: vk::ImageLayout::GENERAL };
+        let sets =
+            DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1)], volume.levels.saturating_sub(1))?;
+        let storage_info = |view| vk::DescriptorImageInfo {
+            sampler: vk::Sampler::null(),
+            image_view: view,
+            image_layout: vk::ImageLayout::GENERAL,
+        };
         for level in 1..volume.levels {
             let set = level as usize - 1;
-            sets.write_images_at(set, 0, vk::DescriptorType::STORAGE_IMAGE, &[storage_info(volume.radiance.mip_view(level - 1))]);
-            sets.write_images_at(set, 1, vk::DescriptorType::STORAGE_IMAGE, &[storage_info(volume.radiance.mip_view(level))]);
+            sets.write_images_at(
+                set,
+                0,
+                vk::DescriptorType::STORAGE_IMAGE,
+                &[storage_info(volume.radiance.mip_view(level - 1))],
+            );
+            sets.write_images_at(
+                set,
+                1,
+                vk::DescriptorType::STORAGE_IMAGE,
+                &[storage_info(volume.radiance.mip_view(level))],
+            );
         }
         let pipeline = Pipeline::compute(ctx, "mip filter", Stage::new(c, shaders::GI_FILTER_COMP), &[sets.layout], 0)?;
-        Ok(FilterPass { ctx: ctx.clone(), pipeline, sets, resolution: volume.radiance.desc.extent.width, levels: volume.levels })
+        Ok(FilterPass {
+            ctx: ctx.clone(),
+            pipeline,
+            sets,
+            resolution: volume.radiance.desc.extent.width,
+            levels: volume.levels,
+        })
     }
 
     pub fn record(&self, cmd: vk::CommandBuffer) {
@@ -45,7 +66,10 @@ impl FilterPass {
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
         // The cones sample the whole chain in the fragment stage (and the volume view in compute).
-        let sampled = (vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_SAMPLED_READ);
+        let sampled = (
+            vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER,
+            vk::AccessFlags2::SHADER_SAMPLED_READ,
+        );
         gpu::memory_barrier(&self.ctx, cmd, w, sampled);
     }
 }

@@ -55,7 +55,11 @@ impl std::str::FromStr for View {
             "voxels" => View::Voxels,
             _ => match s.strip_prefix("radiance:").map(str::parse::<u32>) {
                 Some(Ok(level)) => View::Radiance(level),
-                _ => return Err(format!("unknown view '{s}' (full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL)")),
+                _ => {
+                    return Err(format!(
+                        "unknown view '{s}' (full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL)"
+                    ))
+                }
             },
         })
     }
@@ -112,8 +116,7 @@ pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
             let view = Mat4::look_at_rh(position, position + direction, up_for(direction));
             let (near, far) = depth_range(position, bounds);
             let fov = (2.0 * outer_deg + 2.0).min(170.0).to_radians();
-            flip_y(Mat4::perspective_rh(fov, 1.0, near.max(far * 2e-3), far))
-                * view
+            flip_y(Mat4::perspective_rh(fov, 1.0, near.max(far * 2e-3), far)) * view
         }
         Light::Directional { direction, .. } => {
             let (center, radius) = if bounds.is_empty() {
@@ -160,7 +163,12 @@ impl FrameUniforms {
             light_cone: Vec4::new(cone.x, cone.y, 1.0 / shadow_resolution as f32, 0.0),
             viewport: Vec4::new(camera.width as f32, camera.height as f32, 0.0, 0.0),
             voxel_origin: f.grid.origin.extend(f.grid.voxel),
-            voxel_grid: Vec4::new(f.grid.resolution as f32, f.mip_levels as f32, f.gi.temporal, f.first_frame as u32 as f32),
+            voxel_grid: Vec4::new(
+                f.grid.resolution as f32,
+                f.mip_levels as f32,
+                f.gi.temporal,
+                f.first_frame as u32 as f32,
+            ),
             cone: Vec4::new(f.gi.steps as f32, f.gi.bias, f.gi.cone_start, f.gi.lod_offset),
             view: Vec4::new(f.view.code() as f32, level as f32, f.gi_on as u32 as f32, 0.0),
         }

@@ -32,7 +32,10 @@ pub struct InjectPass {
 pub fn compute_to_compute() -> [(vk::PipelineStageFlags2, vk::AccessFlags2); 2] {
     [
         (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE),
-        (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE),
+        (
+            vk::PipelineStageFlags2::COMPUTE_SHADER,
+            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
+        ),
     ]
 }
 
@@ -50,7 +53,8 @@ impl InjectPass {
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
-        let resolve = Pipeline::compute(ctx, "resolve", Stage::new(c, shaders::GI_RESOLVE_COMP), &[resolve_set.layout], 0)?;
+        let resolve =
+            Pipeline::compute(ctx, "resolve", Stage::new(c, shaders::GI_RESOLVE_COMP), &[resolve_set.layout], 0)?;
 
         let depth_sampler = Sampler::new(
             ctx,
@@ -64,19 +68,37 @@ impl InjectPass {
         let inject_set = DescriptorSet::new(
             ctx,
             "inject",
-            &[Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c), storage(1), storage(2), storage(3), storage(4)],
+            &[
+                Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
+                storage(1),
+                storage(2),
+                storage(3),
+                storage(4),
+            ],
         )?;
         inject_set.write_sampled(0, shadow.map.view.raw, depth_sampler.raw);
         inject_set.write_storage(1, voxels.albedo.view.raw);
         inject_set.write_storage(2, voxels.normal.view.raw);
         inject_set.write_storage(3, voxels.emission.view.raw);
         inject_set.write_storage(4, radiance.injected.view.raw);
-        let inject = Pipeline::compute(ctx, "inject", Stage::new(c, shaders::GI_INJECT_COMP), &[scene.set.layout, inject_set.layout], 0)?;
+        let inject = Pipeline::compute(
+            ctx,
+            "inject",
+            Stage::new(c, shaders::GI_INJECT_COMP),
+            &[scene.set.layout, inject_set.layout],
+            0,
+        )?;
 
         let blend_set = DescriptorSet::new(ctx, "temporal blend", &[storage(0), storage(1)])?;
         blend_set.write_storage(0, radiance.injected.view.raw);
         blend_set.write_storage(1, radiance.radiance.mip_view(0));
-        let blend = Pipeline::compute(ctx, "temporal blend", Stage::new(c, shaders::GI_BLEND_COMP), &[scene.set.layout, blend_set.layout], 0)?;
+        let blend = Pipeline::compute(
+            ctx,
+            "temporal blend",
+            Stage::new(c, shaders::GI_BLEND_COMP),
+            &[scene.set.layout, blend_set.layout],
+            0,
+        )?;
 
         Ok(InjectPass {
             ctx: ctx.clone(),

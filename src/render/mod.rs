@@ -66,9 +66,18 @@ impl Targets {
             hdr: Image::new(
                 ctx,
                 "hdr radiance",
-                ImageDesc::d2(Self::HDR_FORMAT, width, height, vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::STORAGE | u),
+                ImageDesc::d2(
+                    Self::HDR_FORMAT,
+                    width,
+                    height,
+                    vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::STORAGE | u,
+                ),
             )?,
-            ldr: Image::new(ctx, "ldr output", ImageDesc::d2(Self::LDR_FORMAT, width, height, vk::ImageUsageFlags::STORAGE | u))?,
+            ldr: Image::new(
+                ctx,
+                "ldr output",
+                ImageDesc::d2(Self::LDR_FORMAT, width, height, vk::ImageUsageFlags::STORAGE | u),
+            )?,
         })
     }
 }
@@ -111,7 +120,13 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        RenderOptions { method: VoxelizeMethod::tess(), resolution: None, view: View::Full, gi: true, tracing: Tracing::default() }
+        RenderOptions {
+            method: VoxelizeMethod::tess(),
+            resolution: None,
+            view: View::Full,
+            gi: true,
+            tracing: Tracing::default(),
+        }
     }
 }
 
@@ -267,7 +282,9 @@ impl Renderer {
         self.scene.camera.height = height;
         self.targets = Targets::new(&ctx, width, height)?;
         self.deferred = match self.options.tracing {
-            Tracing::Deferred => Some(DeferredShadePass::new(&ctx, &self.scene_gpu, &self.shadow, &self.radiance, &self.targets)?),
+            Tracing::Deferred => {
+                Some(DeferredShadePass::new(&ctx, &self.scene_gpu, &self.shadow, &self.radiance, &self.targets)?)
+            }
             Tracing::Forward => None,
         };
         self.volume_view = VolumeViewPass::new(&ctx, &self.scene_gpu, &self.voxels, &self.radiance, &self.targets)?;

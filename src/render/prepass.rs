@@ -37,7 +37,15 @@ impl DepthPrepass {
             vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
             vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
         );
-        gpu::image_barrier(ctx, cmd, &targets.depth, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, depth_rw, depth_rw);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.depth,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+            depth_rw,
+            depth_rw,
+        );
         let att = Attachments {
             color: None,
             depth: Some((&targets.depth, vk::AttachmentLoadOp::CLEAR)),

@@ -30,7 +30,8 @@ impl RadianceVolume {
             });
         }
         let levels = 32 - resolution.leading_zeros();
-        let storage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+        let storage =
+            vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
         let injected = Image::new(ctx, "injected radiance", ImageDesc::d3(RADIANCE_FORMAT, resolution, storage))?;
         let radiance = Image::new(
             ctx,
@@ -44,7 +45,13 @@ impl RadianceVolume {
             for img in [&injected, &radiance] {
                 gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, none, clear);
                 unsafe {
-                    ctx.device.cmd_clear_color_image(cmd, img.raw, vk::ImageLayout::GENERAL, &vk::ClearColorValue::default(), &[img.range()])
+                    ctx.device.cmd_clear_color_image(
+                        cmd,
+                        img.raw,
+                        vk::ImageLayout::GENERAL,
+                        &vk::ClearColorValue::default(),
+                        &[img.range()],
+                    )
                 };
             }
         })?;
@@ -53,6 +60,10 @@ impl RadianceVolume {
 
     /// Descriptor info for sampling the whole mip chain (GENERAL layout).
     pub fn sampled_info(&self) -> vk::DescriptorImageInfo {
-        vk::DescriptorImageInfo { sampler: self.sampler.raw, image_view: self.radiance.view.raw, image_layout: vk::ImageLayout::GENERAL }
+        vk::DescriptorImageInfo {
+            sampler: self.sampler.raw,
+            image_view: self.radiance.view.raw,
+            image_layout: vk::ImageLayout::GENERAL,
+        }
     }
 }

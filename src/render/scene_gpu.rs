@@ -26,7 +26,12 @@ pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [
     vk::VertexInputAttributeDescription { location: 0, binding: 0, format: vk::Format::R32G32B32_SFLOAT, offset: 0 },
     vk::VertexInputAttributeDescription { location: 1, binding: 0, format: vk::Format::R32G32B32_SFLOAT, offset: 12 },
     vk::VertexInputAttributeDescription { location: 2, binding: 0, format: vk::Format::R32G32_SFLOAT, offset: 24 },
-    vk::VertexInputAttributeDescription { location: 3, binding: 0, format: vk::Format::R32G32B32A32_SFLOAT, offset: 32 },
+    vk::VertexInputAttributeDescription {
+        location: 3,
+        binding: 0,
+        format: vk::Format::R32G32B32A32_SFLOAT,
+        offset: 32,
+    },
 ];
 
 pub fn vertex_layout() -> VertexLayout<'static> {
@@ -49,8 +54,18 @@ pub struct MeshBuffers {
 impl MeshBuffers {
     pub fn new(ctx: &Arc<Context>, name: &str, mesh: &Mesh) -> Result<Self> {
         let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
-        let vertices = commands::upload_buffer(ctx, &format!("{name} vertices"), vk::BufferUsageFlags::VERTEX_BUFFER | storage, &mesh.vertices)?;
-        let indices = commands::upload_buffer(ctx, &format!("{name} indices"), vk::BufferUsageFlags::INDEX_BUFFER | storage, &mesh.indices)?;
+        let vertices = commands::upload_buffer(
+            ctx,
+            &format!("{name} vertices"),
+            vk::BufferUsageFlags::VERTEX_BUFFER | storage,
+            &mesh.vertices,
+        )?;
+        let indices = commands::upload_buffer(
+            ctx,
+            &format!("{name} indices"),
+            vk::BufferUsageFlags::INDEX_BUFFER | storage,
+            &mesh.indices,
+        )?;
         Ok(MeshBuffers { ctx: ctx.clone(), vertices, indices, draws: mesh.draws.clone() })
     }
 
@@ -88,7 +103,9 @@ pub struct SceneGpu {
 fn can_blit_mips(ctx: &Context, format: vk::Format) -> bool {
     let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, format) };
     props.optimal_tiling_features.contains(
-        vk::FormatFeatureFlags::BLIT_SRC | vk::FormatFeatureFlags::BLIT_DST | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR,
+        vk::FormatFeatureFlags::BLIT_SRC
+            | vk::FormatFeatureFlags::BLIT_DST
+            | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR,
     )
 }
 
@@ -100,15 +117,25 @@ impl SceneGpu {
         for t in &scene.textures {
             let format = if t.srgb { vk::Format::R8G8B8A8_SRGB } else { vk::Format::R8G8B8A8_UNORM };
             let levels = if can_blit_mips(ctx, format) { 32 - t.width.max(t.height).leading_zeros() } else { 1 };
-            let usage = vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
-            let img = Image::new(ctx, &t.path.display().to_string(), ImageDesc::d2(format, t.width, t.height, usage).mips(levels))?;
+            let usage =
+                vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
+            let img = Image::new(
+                ctx,
+                &t.path.display().to_string(),
+                ImageDesc::d2(format, t.width, t.height, usage).mips(levels),
+            )?;
             commands::upload_texture(ctx, &img, &t.rgba)?;
             textures.push(img);
         }
         let white = Image::new(
             ctx,
             "white texel",
-            ImageDesc::d2(vk::Format::R8G8B8A8_UNORM, 1, 1, vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST),
+            ImageDesc::d2(
+                vk::Format::R8G8B8A8_UNORM,
+                1,
+                1,
+                vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+            ),
         )?;
         commands::upload_texture(ctx, &white, &[255, 255, 255, 255])?;
 
@@ -123,7 +150,8 @@ impl SceneGpu {
                 tex: [flag(m.albedo_texture), flag(m.normal_texture), 0, 0],
             })
             .collect();
-        let materials = commands::upload_buffer(ctx, "materials", vk::BufferUsageFlags::STORAGE_BUFFER, &materials_gpu)?;
+        let materials =
+            commands::upload_buffer(ctx, "materials", vk::BufferUsageFlags::STORAGE_BUFFER, &materials_gpu)?;
         let uniforms = Buffer::new(
             ctx,
             "frame uniforms",

@@ -27,7 +27,8 @@ impl ShadePass {
     pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass, radiance: &RadianceVolume) -> Result<Self> {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frag = vk::ShaderStageFlags::FRAGMENT;
-        let set = DescriptorSet::new(ctx, "shade inputs", &[Binding::new(0, sampled, frag), Binding::new(1, sampled, frag)])?;
+        let set =
+            DescriptorSet::new(ctx, "shade inputs", &[Binding::new(0, sampled, frag), Binding::new(1, sampled, frag)])?;
         let shadow_sampler = Sampler::shadow(ctx, "shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
         set.write_images(1, sampled, &[radiance.sampled_info()]);
@@ -54,7 +55,10 @@ impl ShadePass {
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
         let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
-        let compute_rw = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        let compute_rw = (
+            vk::PipelineStageFlags2::COMPUTE_SHADER,
+            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
+        );
         let depth_w = (
             vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
             vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE,
@@ -64,7 +68,15 @@ impl ShadePass {
             vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
         );
         gpu::memory_barrier(ctx, cmd, depth_w, depth_r);
-        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, compute_rw, color_w);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.hdr,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            compute_rw,
+            color_w,
+        );
         let att = Attachments {
             color: Some((&targets.hdr, vk::AttachmentLoadOp::CLEAR, [0.0, 0.0, 0.0, 0.0])),
             depth: Some((&targets.depth, vk::AttachmentLoadOp::LOAD)),
@@ -76,6 +88,14 @@ impl ShadePass {
             self.pipeline.bind_set(cmd, 2, self.set.raw);
             scene.draw(cmd, self.pipeline.layout, true);
         });
-        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, vk::ImageLayout::GENERAL, color_w, compute_rw);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.hdr,
+            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            vk::ImageLayout::GENERAL,
+            color_w,
+            compute_rw,
+        );
     }
 }

@@ -48,12 +48,33 @@ impl ShadowPass {
             vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER,
             vk::AccessFlags2::SHADER_SAMPLED_READ,
         );
-        gpu::image_barrier(ctx, cmd, &self.map, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, sampled, depth_w);
-        let att = Attachments { color: None, depth: Some((&self.map, vk::AttachmentLoadOp::CLEAR)), width: e.width, height: e.height };
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &self.map,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+            sampled,
+            depth_w,
+        );
+        let att = Attachments {
+            color: None,
+            depth: Some((&self.map, vk::AttachmentLoadOp::CLEAR)),
+            width: e.width,
+            height: e.height,
+        };
         gpu::render(ctx, cmd, att, || {
             self.pipeline.bind(cmd, &[scene.set.raw]);
             scene.draw(cmd, self.pipeline.layout, false);
         });
-        gpu::image_barrier(ctx, cmd, &self.map, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, depth_w, sampled);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &self.map,
+            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+            vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            depth_w,
+            sampled,
+        );
     }
 }

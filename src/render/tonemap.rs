@@ -22,7 +22,10 @@ impl TonemapPass {
         let set = DescriptorSet::new(
             ctx,
             "tonemap",
-            &[Binding::new(0, vk::DescriptorType::STORAGE_IMAGE, c), Binding::new(1, vk::DescriptorType::STORAGE_IMAGE, c)],
+            &[
+                Binding::new(0, vk::DescriptorType::STORAGE_IMAGE, c),
+                Binding::new(1, vk::DescriptorType::STORAGE_IMAGE, c),
+            ],
         )?;
         set.write_storage(0, targets.hdr.view.raw);
         set.write_storage(1, targets.ldr.view.raw);
@@ -33,7 +36,10 @@ impl TonemapPass {
     /// `raw`: the HDR target already holds [0, 1] values (skip the c/(c+1) curve).
     pub fn record(&self, cmd: vk::CommandBuffer, targets: &Targets, raw: bool) {
         let ctx = &self.ctx;
-        let rw = (vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
+        let rw = (
+            vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER,
+            vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE,
+        );
         let w = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE);
         gpu::image_barrier(ctx, cmd, &targets.ldr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, w);
         self.pipeline.bind(cmd, &[self.set.raw]);

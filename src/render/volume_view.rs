@@ -21,7 +21,13 @@ pub struct VolumeViewPass {
 }
 
 impl VolumeViewPass {
-    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, voxels: &VoxelVolume, radiance: &RadianceVolume, targets: &Targets) -> Result<Self> {
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &SceneGpu,
+        voxels: &VoxelVolume,
+        radiance: &RadianceVolume,
+        targets: &Targets,
+    ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let set = DescriptorSet::new(
             ctx,
@@ -35,13 +41,22 @@ impl VolumeViewPass {
         set.write_storage(0, voxels.albedo.view.raw);
         set.write_images(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, &[radiance.sampled_info()]);
         set.write_storage(2, targets.hdr.view.raw);
-        let pipeline = Pipeline::compute(ctx, "volume view", Stage::new(c, shaders::GI_VOLUME_VIEW_COMP), &[scene.set.layout, set.layout], 0)?;
+        let pipeline = Pipeline::compute(
+            ctx,
+            "volume view",
+            Stage::new(c, shaders::GI_VOLUME_VIEW_COMP),
+            &[scene.set.layout, set.layout],
+            0,
+        )?;
         Ok(VolumeViewPass { ctx: ctx.clone(), pipeline, set })
     }
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let rw = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        let rw = (
+            vk::PipelineStageFlags2::COMPUTE_SHADER,
+            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
+        );
         gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
         self.pipeline.bind(cmd, &[scene.set.raw, self.set.raw]);
         gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);

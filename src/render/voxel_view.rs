@@ -8,7 +8,9 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::{frame::depth_range, FrameImages};
 use crate::error::Result;
-use crate::gpu::{self, shaders, Attachments, Buffer, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage, VertexLayout};
+use crate::gpu::{
+    self, shaders, Attachments, Buffer, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage, VertexLayout,
+};
 use crate::scene::Scene;
 use crate::voxel::headless::VoxelRun;
 
@@ -43,10 +45,23 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
     let cam = &scene.camera;
     let (w, h) = (cam.width, cam.height);
     let color_format = vk::Format::R8G8B8A8_UNORM;
-    let color = Image::new(ctx, "voxel view", ImageDesc::d2(color_format, w, h, vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC))?;
+    let color = Image::new(
+        ctx,
+        "voxel view",
+        ImageDesc::d2(color_format, w, h, vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC),
+    )?;
     let depth_format = vk::Format::D32_SFLOAT;
-    let depth = Image::new(ctx, "voxel view depth", ImageDesc::d2(depth_format, w, h, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT))?;
-    let buffer = Buffer::from_slice(ctx, "voxel instances", vk::BufferUsageFlags::VERTEX_BUFFER, if instances.is_empty() { &[[0u32; 2]] } else { &instances })?;
+    let depth = Image::new(
+        ctx,
+        "voxel view depth",
+        ImageDesc::d2(depth_format, w, h, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT),
+    )?;
+    let buffer = Buffer::from_slice(
+        ctx,
+        "voxel instances",
+        vk::BufferUsageFlags::VERTEX_BUFFER,
+        if instances.is_empty() { &[[0u32; 2]] } else { &instances },
+    )?;
 
     let mut desc = GraphicsDesc::new(
         "voxel view",
@@ -78,8 +93,24 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
         vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
     );
     ctx.submit_and_wait("voxel view", |cmd| {
-        gpu::image_barrier(ctx, cmd, &color, vk::ImageLayout::UNDEFINED, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, none, color_w);
-        gpu::image_barrier(ctx, cmd, &depth, vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL, none, depth_rw);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &color,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            none,
+            color_w,
+        );
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &depth,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+            none,
+            depth_rw,
+        );
         let att = Attachments {
             color: Some((&color, vk::AttachmentLoadOp::CLEAR, [0.05, 0.05, 0.07, 1.0])),
             depth: Some((&depth, vk::AttachmentLoadOp::CLEAR)),

@@ -177,7 +177,9 @@ impl Light {
             Light::Spot { position, direction, intensity, inner_deg, outer_deg } => {
                 Light::Spot { position, direction, intensity: intensity * s, inner_deg, outer_deg }
             }
-            Light::Directional { direction, irradiance } => Light::Directional { direction, irradiance: irradiance * s },
+            Light::Directional { direction, irradiance } => {
+                Light::Directional { direction, irradiance: irradiance * s }
+            }
         }
     }
 }
@@ -286,7 +288,8 @@ impl Scene {
     fn from_toml(path: &Path) -> Result<Scene> {
         let bytes = read_file(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
         let text = String::from_utf8(bytes).map_err(|_| Error::input(path, "scene file is not UTF-8 text"))?;
-        let file: SceneFile = toml::from_str(&text).map_err(|e| Error::input(path, format!("invalid scene file: {e}")))?;
+        let file: SceneFile =
+            toml::from_str(&text).map_err(|e| Error::input(path, format!("invalid scene file: {e}")))?;
         let mesh_path = path.parent().unwrap_or(Path::new("")).join(&file.mesh);
         let mut warnings = Vec::new();
         let (mesh, materials, textures) = obj::load_obj(&mesh_path, &read_file, &mut warnings)?;
@@ -296,20 +299,32 @@ impl Scene {
                 check_finite(path, "camera.target", &c.target)?;
                 let up = check_direction(path, "camera.up", c.up)?;
                 if !(c.fov_y_deg > 0.0 && c.fov_y_deg < 180.0) {
-                    return Err(Error::input(path, format!("camera.fov_y_deg must be in (0, 180), got {}", c.fov_y_deg)));
+                    return Err(Error::input(
+                        path,
+                        format!("camera.fov_y_deg must be in (0, 180), got {}", c.fov_y_deg),
+                    ));
                 }
                 check_image_size(c.width, c.height).map_err(|e| Error::input(path, format!("camera.{e}")))?;
                 if Vec3::from(c.eye).distance_squared(Vec3::from(c.target)) < 1e-12 {
                     return Err(Error::input(path, "camera.eye and camera.target must differ"));
                 }
-                Camera { eye: c.eye.into(), target: c.target.into(), up, fov_y_deg: c.fov_y_deg, width: c.width, height: c.height }
+                Camera {
+                    eye: c.eye.into(),
+                    target: c.target.into(),
+                    up,
+                    fov_y_deg: c.fov_y_deg,
+                    width: c.width,
+                    height: c.height,
+                }
             }
             None => frame_bounds(&mesh.bounds),
         };
         let light = match file.lights.as_slice() {
             [] => default_light(),
             [l] => convert_light(path, l)?,
-            more => return Err(Error::input(path, format!("{} lights given; vct renders one shadowed light", more.len()))),
+            more => {
+                return Err(Error::input(path, format!("{} lights given; vct renders one shadowed light", more.len())))
+            }
         };
         let settings = Settings {
             voxel_resolution: file.voxels.resolution,
@@ -325,7 +340,16 @@ impl Scene {
         let (mesh, materials, textures) = obj::load_obj(path, &read_file, &mut warnings)?;
         let camera = frame_bounds(&mesh.bounds);
         let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
-        Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light: default_light(), settings, warnings })
+        Ok(Scene {
+            source: path.to_path_buf(),
+            mesh,
+            materials,
+            textures,
+            camera,
+            light: default_light(),
+            settings,
+            warnings,
+        })
     }
 
     /// A scene made in code: `triangles` with one flat material each (by index into
@@ -376,7 +400,10 @@ impl Scene {
 
 fn check_settings(path: &Path, s: &Settings) -> Result<()> {
     if !(16..=512).contains(&s.voxel_resolution) || !s.voxel_resolution.is_power_of_two() {
-        return Err(Error::input(path, format!("voxels.resolution must be a power of two in 16..=512, got {}", s.voxel_resolution)));
+        return Err(Error::input(
+            path,
+            format!("voxels.resolution must be a power of two in 16..=512, got {}", s.voxel_resolution),
+        ));
     }
     if !(64..=8192).contains(&s.shadow_resolution) {
         return Err(Error::input(path, format!("shadow.resolution must be in 64..=8192, got {}", s.shadow_resolution)));
@@ -405,7 +432,9 @@ fn convert_light(path: &Path, l: &LightFile) -> Result<Light> {
             if !(0.0..90.0).contains(&outer_deg) || !(0.0..=outer_deg).contains(&inner_deg) {
                 return Err(Error::input(
                     path,
-                    format!("light angles must satisfy 0 <= inner_deg <= outer_deg < 90, got {inner_deg} and {outer_deg}"),
+                    format!(
+                        "light angles must satisfy 0 <= inner_deg <= outer_deg < 90, got {inner_deg} and {outer_deg}"
+                    ),
                 ));
             }
             Light::Spot {
@@ -430,7 +459,8 @@ pub fn default_light() -> Light {
 
 /// A camera in front of (+z) and a little above the bounds, framing all of them.
 pub fn frame_bounds(b: &Aabb) -> Camera {
-    let (center, radius) = if b.is_empty() { (Vec3::ZERO, 1.0) } else { (b.center(), (b.size().length() * 0.5).max(1e-3)) };
+    let (center, radius) =
+        if b.is_empty() { (Vec3::ZERO, 1.0) } else { (b.center(), (b.size().length() * 0.5).max(1e-3)) };
     let fov_y_deg = 45.0f32;
     let dist = radius / (fov_y_deg.to_radians() * 0.5).sin();
     let dir = Vec3::new(0.0, 0.25, 1.0).normalize();

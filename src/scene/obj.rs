@@ -124,10 +124,8 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
 
     let mut textures = Vec::new();
     let mut cache = HashMap::new();
-    let mut mats: Vec<Material> = tobj_materials
-        .iter()
-        .map(|m| convert_material(m, &dir, read, &mut textures, &mut cache, warnings))
-        .collect();
+    let mut mats: Vec<Material> =
+        tobj_materials.iter().map(|m| convert_material(m, &dir, read, &mut textures, &mut cache, warnings)).collect();
     let default_material = mats.len();
     mats.push(Material::default_grey());
 
@@ -145,7 +143,8 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
         any_normals_missing |= !has_normals;
         for i in 0..n {
             let pos = [m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]];
-            let normal = if has_normals { [m.normals[3 * i], m.normals[3 * i + 1], m.normals[3 * i + 2]] } else { [0.0; 3] };
+            let normal =
+                if has_normals { [m.normals[3 * i], m.normals[3 * i + 1], m.normals[3 * i + 2]] } else { [0.0; 3] };
             // OBJ has v = 0 at the bottom of the image; Vulkan's row 0 is the top.
             let uv = if has_uv { [m.texcoords[2 * i], 1.0 - m.texcoords[2 * i + 1]] } else { [0.0; 2] };
             vertices.push(Vertex { pos, normal, uv, tangent: [0.0; 4] });
@@ -165,7 +164,8 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
         }
     }
     if non_finite > 0 {
-        warnings.push(format!("{}: dropped {non_finite} triangle(s) with non-finite vertex coordinates", path.display()));
+        warnings
+            .push(format!("{}: dropped {non_finite} triangle(s) with non-finite vertex coordinates", path.display()));
     }
     if degenerate > 0 {
         warnings.push(format!("{}: {degenerate} zero-area triangle(s) (kept; they cover nothing)", path.display()));
@@ -177,7 +177,11 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
         if list.is_empty() {
             continue;
         }
-        draws.push(Draw { first_index: indices.len() as u32, index_count: list.len() as u32, material: material as u32 });
+        draws.push(Draw {
+            first_index: indices.len() as u32,
+            index_count: list.len() as u32,
+            material: material as u32,
+        });
         indices.extend(list);
     }
     if any_normals_missing {

@@ -101,7 +101,11 @@ pub fn swing_light(light: &mut Light, yaw: f32, pitch: f32) {
         let d = Quat::from_rotation_y(yaw) * d;
         let side = d.cross(Vec3::Y).normalize_or(Vec3::X);
         let turned = Quat::from_axis_angle(side, pitch) * d;
-        if turned.y.abs() > 0.999 { d } else { turned.normalize() }
+        if turned.y.abs() > 0.999 {
+            d
+        } else {
+            turned.normalize()
+        }
     };
     match light {
         Light::Spot { direction, .. } | Light::Directional { direction, .. } => *direction = turn(*direction),

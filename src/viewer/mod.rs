@@ -110,14 +110,15 @@ fn key_axis(code: KeyCode, plus: KeyCode, minus: KeyCode, pressed: bool, axis: &
 impl App {
     fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
         let cam = self.options.scene.camera;
-        let attrs = Window::default_attributes()
-            .with_title("vct")
-            .with_inner_size(PhysicalSize::new(cam.width, cam.height));
-        let window = Arc::new(event_loop.create_window(attrs).map_err(|e| Error::Loader(format!("cannot open a window: {e}")))?);
+        let attrs =
+            Window::default_attributes().with_title("vct").with_inner_size(PhysicalSize::new(cam.width, cam.height));
+        let window =
+            Arc::new(event_loop.create_window(attrs).map_err(|e| Error::Loader(format!("cannot open a window: {e}")))?);
         let display = raw_window_handle::HasDisplayHandle::display_handle(&*window)
             .map_err(|e| Error::Loader(format!("no display: {e}")))?
             .as_raw();
-        let exts = ash_window::enumerate_required_extensions(display).map_err(|r| Error::Vulkan { call: "enumerate_required_extensions", result: r })?;
+        let exts = ash_window::enumerate_required_extensions(display)
+            .map_err(|r| Error::Vulkan { call: "enumerate_required_extensions", result: r })?;
         // SAFETY: ash-window returns pointers to 'static NUL-terminated extension names.
         let instance_extensions = exts.iter().map(|&p| unsafe { std::ffi::CStr::from_ptr(p) }).collect();
         let ctx = Context::new(&ContextOptions {
@@ -347,7 +348,9 @@ impl ApplicationHandler for App {
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),
             WindowEvent::KeyboardInput { event, .. } => match event.physical_key {
-                PhysicalKey::Code(code) if !event.repeat => self.on_key(code, event.state == ElementState::Pressed, event_loop),
+                PhysicalKey::Code(code) if !event.repeat => {
+                    self.on_key(code, event.state == ElementState::Pressed, event_loop)
+                }
                 _ => Ok(()),
             },
             WindowEvent::MouseInput { state, button, .. } => {
@@ -399,7 +402,8 @@ thread_local! {
 
 /// Opens the window and runs until it is closed, Esc is pressed or `frames` have been shown.
 pub fn run(options: ViewerOptions) -> Result<ViewerReport> {
-    let event_loop = EventLoop::new().map_err(|e| Error::Loader(format!("cannot start the window system (is DISPLAY set?): {e}")))?;
+    let event_loop = EventLoop::new()
+        .map_err(|e| Error::Loader(format!("cannot start the window system (is DISPLAY set?): {e}")))?;
     event_loop.set_control_flow(ControlFlow::Poll);
     let mut app = App { options, running: None, error: None, frames: 0, report: None };
     event_loop.run_app(&mut app).map_err(|e| Error::Loader(format!("event loop: {e}")))?;

@@ -26,12 +26,24 @@ impl VoxelRun {
 
 /// Voxelizes `scene` at `resolution`³ (grid fitted to the scene) with `method`, timing
 /// `repeats` runs (the median time is reported, the last grid kept).
-pub fn voxelize(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, resolution: u32, repeats: u32) -> Result<VoxelRun> {
+pub fn voxelize(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    method: VoxelizeMethod,
+    resolution: u32,
+    repeats: u32,
+) -> Result<VoxelRun> {
     voxelize_in(ctx, scene, method, VoxelGrid::fit(&scene.mesh.bounds, resolution)?, repeats)
 }
 
 /// As [`voxelize`], on a given grid.
-pub fn voxelize_in(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid, repeats: u32) -> Result<VoxelRun> {
+pub fn voxelize_in(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    method: VoxelizeMethod,
+    grid: VoxelGrid,
+    repeats: u32,
+) -> Result<VoxelRun> {
     let scene_gpu = SceneGpu::new(ctx, scene)?;
     let volume = VoxelVolume::new(ctx, grid)?;
     let voxelizer = Voxelizer::new(ctx, scene, &scene_gpu, &volume, method)?;

@@ -103,7 +103,11 @@ pub struct VoxelParams {
 }
 
 /// Set 2 of both voxelizers: their parameters and the volume's two storage images.
-pub(crate) fn voxel_set(ctx: &Arc<Context>, volume: &VoxelVolume, params: &VoxelParams) -> Result<(DescriptorSet, Buffer)> {
+pub(crate) fn voxel_set(
+    ctx: &Arc<Context>,
+    volume: &VoxelVolume,
+    params: &VoxelParams,
+) -> Result<(DescriptorSet, Buffer)> {
     let g = vk::ShaderStageFlags::ALL_GRAPHICS;
     let set = DescriptorSet::new(
         ctx,
@@ -115,7 +119,8 @@ pub(crate) fn voxel_set(ctx: &Arc<Context>, volume: &VoxelVolume, params: &Voxel
             Binding::new(3, vk::DescriptorType::STORAGE_IMAGE, g),
         ],
     )?;
-    let buffer = Buffer::from_slice(ctx, "voxel params", vk::BufferUsageFlags::UNIFORM_BUFFER, std::slice::from_ref(params))?;
+    let buffer =
+        Buffer::from_slice(ctx, "voxel params", vk::BufferUsageFlags::UNIFORM_BUFFER, std::slice::from_ref(params))?;
     set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &buffer);
     set.write_storage(1, volume.albedo.view.raw);
     set.write_storage(2, volume.normal.view.raw);
@@ -123,7 +128,13 @@ pub(crate) fn voxel_set(ctx: &Arc<Context>, volume: &VoxelVolume, params: &Voxel
     Ok((set, buffer))
 }
 
-pub(crate) fn params_for(grid: &VoxelGrid, flags: u32, viewport_scale: u32, level_scale: f32, max_level: f32) -> VoxelParams {
+pub(crate) fn params_for(
+    grid: &VoxelGrid,
+    flags: u32,
+    viewport_scale: u32,
+    level_scale: f32,
+    max_level: f32,
+) -> VoxelParams {
     VoxelParams {
         origin_size: grid.origin.extend(grid.voxel).into(),
         grid: [grid.resolution, flags, viewport_scale, 0],
@@ -132,21 +143,37 @@ pub(crate) fn params_for(grid: &VoxelGrid, flags: u32, viewport_scale: u32, leve
 }
 
 /// One of the two voxelizers, ready to record.
+#[allow(clippy::large_enum_variant)] // one per renderer
 pub enum Voxelizer {
     Tess(tess::TessVoxelizer),
     Raster(raster::RasterVoxelizer),
 }
 
 impl Voxelizer {
-    pub fn new(ctx: &Arc<Context>, scene: &Scene, scene_gpu: &SceneGpu, volume: &VoxelVolume, method: VoxelizeMethod) -> Result<Self> {
-        ctx.require(&method.required_features(), if matches!(method, VoxelizeMethod::Tess { .. }) {
-            "the tessellation voxelizer"
-        } else {
-            "the rasterized voxelizer"
-        })?;
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &Scene,
+        scene_gpu: &SceneGpu,
+        volume: &VoxelVolume,
+        method: VoxelizeMethod,
+    ) -> Result<Self> {
+        ctx.require(
+            &method.required_features(),
+            if matches!(method, VoxelizeMethod::Tess { .. }) {
+                "the tessellation voxelizer"
+            } else {
+                "the rasterized voxelizer"
+            },
+        )?;
         Ok(match method {
             VoxelizeMethod::Tess { level_scale, subdivide, min_level } => Voxelizer::Tess(tess::TessVoxelizer::new(
-                ctx, scene, scene_gpu, volume, level_scale, subdivide, min_level,
+                ctx,
+                scene,
+                scene_gpu,
+                volume,
+                level_scale,
+                subdivide,
+                min_level,
             )?),
             VoxelizeMethod::Raster { coverage, viewport_scale, depth_span } => Voxelizer::Raster(
                 raster::RasterVoxelizer::new(ctx, scene_gpu, volume, coverage, viewport_scale, depth_span)?,

@@ -34,9 +34,13 @@ impl RasterVoxelizer {
         let size = volume.grid.resolution * viewport_scale;
         let max = ctx.info.limits.max_framebuffer_width.min(ctx.info.limits.max_framebuffer_height);
         if size > max {
-            return Err(crate::Error::param("viewport-scale", format!("{size} pixels exceed the device's framebuffer limit {max}")));
+            return Err(crate::Error::param(
+                "viewport-scale",
+                format!("{size} pixels exceed the device's framebuffer limit {max}"),
+            ));
         }
-        let params = params_for(&volume.grid, flag(depth_span, config::VOXEL_FLAG_DEPTH_SPAN), viewport_scale, 1.0, 1.0);
+        let params =
+            params_for(&volume.grid, flag(depth_span, config::VOXEL_FLAG_DEPTH_SPAN), viewport_scale, 1.0, 1.0);
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
         let mut desc = GraphicsDesc::new(
             "raster voxelizer",
@@ -49,7 +53,8 @@ impl RasterVoxelizer {
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
         desc.push_constant_size = 4;
         desc.vertex = Some(vertex_layout_untangented());
-        desc.samples = if coverage == Coverage::Msaa { vk::SampleCountFlags::TYPE_4 } else { vk::SampleCountFlags::TYPE_1 };
+        desc.samples =
+            if coverage == Coverage::Msaa { vk::SampleCountFlags::TYPE_4 } else { vk::SampleCountFlags::TYPE_1 };
         desc.conservative = coverage == Coverage::Hardware;
         let pipeline = Pipeline::graphics(ctx, &desc)?;
         Ok(RasterVoxelizer { ctx: ctx.clone(), pipeline, set, _params: params_buffer, size })

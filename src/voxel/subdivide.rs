@@ -89,7 +89,12 @@ mod tests {
         let (out, split) = subdivide_for_tessellation(&mesh, &grid, 1.0, 64.0);
         assert_eq!(split, 1, "only the big triangle is split");
         let area = |m: &Mesh| -> f32 {
-            (0..m.triangle_count()).map(|t| { let [a, b, c] = m.triangle(t); (b - a).cross(c - a).length() * 0.5 }).sum()
+            (0..m.triangle_count())
+                .map(|t| {
+                    let [a, b, c] = m.triangle(t);
+                    (b - a).cross(c - a).length() * 0.5
+                })
+                .sum()
         };
         assert!((area(&out) - area(&mesh)).abs() < 1e-2);
         for t in 0..out.triangle_count() {

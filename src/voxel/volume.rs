@@ -53,7 +53,8 @@ impl VoxelVolume {
                 ),
             ));
         }
-        let usage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
+        let usage =
+            vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
         let desc = ImageDesc::d3(VOXEL_FORMAT, grid.resolution, usage);
         Ok(VoxelVolume {
             ctx: ctx.clone(),
@@ -67,7 +68,8 @@ impl VoxelVolume {
     /// Clears both textures to zero (empty) and makes them ready for the voxelizers' atomics.
     pub fn record_clear(&self, cmd: vk::CommandBuffer) {
         let ctx = &self.ctx;
-        let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
+        let any =
+            (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
         let clear_w = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
         for img in [&self.albedo, &self.normal, &self.emission] {
             gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, any, clear_w);
@@ -87,7 +89,9 @@ impl VoxelVolume {
     /// Makes the voxelizers' writes visible to the compute and transfer work that follows.
     pub fn record_finish(&self, cmd: vk::CommandBuffer) {
         let after = (
-            vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER | vk::PipelineStageFlags2::ALL_GRAPHICS,
+            vk::PipelineStageFlags2::COMPUTE_SHADER
+                | vk::PipelineStageFlags2::ALL_TRANSFER
+                | vk::PipelineStageFlags2::ALL_GRAPHICS,
             vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::TRANSFER_READ,
         );
         gpu::memory_barrier(&self.ctx, cmd, voxel_write_scope(), after);
