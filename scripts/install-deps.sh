@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(libvulkan1 mesa-vulkan-drivers vulkan-validationlayers xvfb xauth cmake ninja-build python3 g++ git
-          libxkbcommon-x11-0 libx11-xcb1)
+          libxkbcommon-x11-0 libx11-xcb1 fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

@@ -27,8 +27,44 @@ enum Command {
     Voxelize(VoxelizeArgs),
     /// Open a window running the full GI frame every frame (H for the keys).
     View(ViewArgs),
+    /// Path-trace the scene on the CPU: the ground truth for image accuracy.
+    Reference(ReferenceArgs),
+    /// Compare two images: FLIP on the tone-mapped images, RMSE on linear ones (EXR).
+    Compare(CompareArgs),
     /// List Vulkan devices, their drivers and the features vct uses.
     Devices,
+}
+
+#[derive(Args)]
+struct ReferenceArgs {
+    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    scene: Option<PathBuf>,
+    /// Indirect bounces: 0 direct light only, 1 what cone tracing approximates, more for full GI.
+    #[arg(long, default_value_t = 1)]
+    bounces: u32,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 64)]
+    spp: u32,
+    #[arg(long)]
+    width: Option<u32>,
+    #[arg(long)]
+    height: Option<u32>,
+    #[arg(long, default_value = "reference.png")]
+    out: PathBuf,
+    /// Also write the linear radiance as OpenEXR.
+    #[arg(long)]
+    exr: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct CompareArgs {
+    /// Reference image (PNG or EXR).
+    reference: PathBuf,
+    /// Test image (PNG or EXR), same size.
+    test: PathBuf,
+    /// Write the FLIP error map here.
+    #[arg(long, default_value = "flip.png")]
+    out: PathBuf,
 }
 
 /// The scene, image size and voxelization method (shared by `render` and `view`).
@@ -374,6 +410,74 @@ fn view(args: ViewArgs) -> Result<()> {
     Ok(())
 }
 
+fn reference(args: ReferenceArgs) -> Result<()> {
+    if !(0..=64).contains(&args.bounces) || !(1..=1 << 16).contains(&args.spp) {
+        bail!("--bounces must be in 0..=64 and --spp in 1..=65536");
+    }
+    let mut scene = load_scene(args.scene.as_deref())?;
+    scene.set_size(args.width, args.height)?;
+    let (image, seconds) = render_reference(&scene, args.bounces, args.spp);
+    println!(
+        "path traced {}x{} at {} spp, {} bounce(s) in {seconds:.1} s; noise: mean standard error {:.5} ({:.2}% of the mean)",
+        image.width,
+        image.height,
+        args.spp,
+        args.bounces,
+        image.std_error,
+        100.0 * image.relative_noise
+    );
+    let frame = vct::render::FrameImages::from_linear(image.width, image.height, &image.radiance);
+    vct::output::write_png(&args.out, &frame)?;
+    println!("wrote {}", args.out.display());
+    if let Some(exr) = &args.exr {
+        vct::output::write_exr(exr, &frame)?;
+        println!("wrote {}", exr.display());
+    }
+    Ok(())
+}
+
+/// Path-traces `scene` with a progress bar; returns the image and the seconds it took.
+fn render_reference(scene: &Scene, bounces: u32, spp: u32) -> (vct::reference::pathtrace::RefImage, f64) {
+    let bar = indicatif::ProgressBar::new(scene.camera.height as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("path tracing {bar:40} {pos}/{len} rows, {eta} left")
+            .expect("valid progress template"),
+    );
+    let start = std::time::Instant::now();
+    let tracer = vct::reference::pathtrace::PathTracer::new(scene);
+    let opts = vct::reference::pathtrace::RefOptions { bounces, spp, seed: 1 };
+    let image = tracer.render(opts, &|n| bar.inc(n));
+    bar.finish_and_clear();
+    (image, start.elapsed().as_secs_f64())
+}
+
+fn compare(args: CompareArgs) -> Result<()> {
+    let a = vct::output::read_frame(&args.reference)?;
+    let b = vct::output::read_frame(&args.test)?;
+    if (a.width, a.height) != (b.width, b.height) {
+        bail!(
+            "{} is {}x{} but {} is {}x{}",
+            args.reference.display(),
+            a.width,
+            a.height,
+            args.test.display(),
+            b.width,
+            b.height
+        );
+    }
+    let (flip, map) = vct::reference::metrics::flip(&a.rgb8(), &b.rgb8(), a.width, a.height);
+    println!("FLIP (tone-mapped): {flip:.5}");
+    if !a.hdr.is_empty() && !b.hdr.is_empty() {
+        println!("RMSE (linear radiance): {:.6}", vct::reference::metrics::rmse(&a.linear(), &b.linear()));
+    } else {
+        println!("RMSE (linear radiance): n/a (give two EXR files)");
+    }
+    image::save_buffer(&args.out, &map, a.width, a.height, image::ColorType::Rgb8)
+        .with_context(|| format!("writing {}", args.out.display()))?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
 fn devices() -> Result<()> {
     let list = Context::list_devices().context("listing Vulkan devices")?;
     if list.is_empty() {
@@ -405,6 +509,8 @@ fn main() {
         Command::Render(a) => render(a),
         Command::Voxelize(a) => voxelize(a),
         Command::View(a) => view(a),
+        Command::Reference(a) => reference(a),
+        Command::Compare(a) => compare(a),
         Command::Devices => devices(),
     };
     if let Err(e) = result {
