@@ -2,6 +2,7 @@
 //! rebuilt after S. Freed, *Tessellated Voxelization for Global Illumination using Voxel Cone
 //! Tracing* (2018), with its two voxelizers measured against exact references.
 
+pub mod bench;
 pub mod error;
 pub mod gpu;
 pub mod output;

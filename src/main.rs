@@ -31,6 +31,8 @@ enum Command {
     Reference(ReferenceArgs),
     /// Compare two images: FLIP on the tone-mapped images, RMSE on linear ones (EXR).
     Compare(CompareArgs),
+    /// Benchmark tess vs raster voxelization: speed and accuracy, CSV/JSON and charts.
+    Bench(BenchArgs),
     /// List Vulkan devices, their drivers and the features vct uses.
     Devices,
 }
@@ -54,6 +56,29 @@ struct ReferenceArgs {
     /// Also write the linear radiance as OpenEXR.
     #[arg(long)]
     exr: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct BenchArgs {
+    /// Extra scenes (.toml or .obj) besides the embedded Cornell box.
+    scenes: Vec<PathBuf>,
+    /// A short run for CI: Cornell at 32³ and 64³, 128×128, few frames, a 16-spp reference.
+    #[arg(long)]
+    quick: bool,
+    /// Output folder; default bench/<date>-<device>.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Timed frames per configuration (after the warm-up).
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Reference samples per pixel.
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Voxel resolutions, e.g. 64,128,256.
+    #[arg(long, value_delimiter = ',')]
+    res: Option<Vec<u32>>,
+    #[command(flatten)]
+    gpu: GpuArgs,
 }
 
 #[derive(Args)]
@@ -478,6 +503,57 @@ fn compare(args: CompareArgs) -> Result<()> {
     Ok(())
 }
 
+fn bench(args: BenchArgs) -> Result<()> {
+    let mut scenes = vec![("cornell".to_string(), Scene::embedded_default()?)];
+    for p in &args.scenes {
+        let name = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
+        scenes.push((name, load_scene(Some(p))?));
+    }
+    if args.quick {
+        for (_, s) in &mut scenes {
+            s.set_size(Some(128), Some(128))?;
+        }
+    }
+    let ctx = open_device(&args.gpu)?;
+    let slug: String =
+        ctx.info.name.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '-' }).collect();
+    let date = time::OffsetDateTime::now_utc().date();
+    let out = args.out.clone().unwrap_or_else(|| PathBuf::from(format!("bench/{date}-{}", slug.trim_matches('-'))));
+    let opts = vct::bench::BenchOptions {
+        scenes,
+        resolutions: args.res.clone().unwrap_or(if args.quick { vec![32, 64] } else { vec![64, 128, 256] }),
+        warmup: if args.quick { 1 } else { 2 },
+        frames: args.frames.unwrap_or(if args.quick { 3 } else { 5 }),
+        reference_spp: args.spp.unwrap_or(if args.quick { 16 } else { 256 }),
+        subdivisions: if args.quick { 2 } else { 4 },
+        out_dir: out.clone(),
+        cache_dir: out.parent().unwrap_or(Path::new(".")).join("cache"),
+    };
+    for &r in &opts.resolutions {
+        vct::voxel::VoxelGrid::fit(&vct::scene::Aabb { min: glam::Vec3::ZERO, max: glam::Vec3::ONE }, r)?;
+    }
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    let start = std::time::Instant::now();
+    let results = vct::bench::run(&ctx, &opts, &|m| bar.set_message(m.to_string())).context("benchmarking")?;
+    bar.finish_and_clear();
+    println!(
+        "{:<10} {:<12} {:>5} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}",
+        "scene", "voxelizer", "N", "voxelize ms", "frame ms", "recall", "prec.", "IoU", "FLIP"
+    );
+    for r in &results.rows {
+        println!(
+            "{:<10} {:<12} {:>5} {:>12.2} {:>12.2} {:>8.4} {:>8.4} {:>8.4} {:>8.4}",
+            r.scene, r.voxelizer, r.resolution, r.voxelize_ms, r.total_ms, r.recall, r.precision, r.iou, r.flip
+        );
+    }
+    for f in vct::bench::write(&out, &results)? {
+        println!("wrote {}", f.display());
+    }
+    println!("bench took {:.0} s", start.elapsed().as_secs_f64());
+    check_validation(&ctx)
+}
+
 fn devices() -> Result<()> {
     let list = Context::list_devices().context("listing Vulkan devices")?;
     if list.is_empty() {
@@ -511,6 +587,7 @@ fn main() {
         Command::View(a) => view(a),
         Command::Reference(a) => reference(a),
         Command::Compare(a) => compare(a),
+        Command::Bench(a) => bench(a),
         Command::Devices => devices(),
     };
     if let Err(e) = result {

@@ -1,0 +1,296 @@
+//! The benchmark charts (plotters; each as PNG and SVG): voxelization time tess vs raster by
+//! resolution (the thesis' Table 5.2 / Fig. 5.6), per-pass stacked bars (Fig. 5.2), speed
+//! against accuracy with the Pareto front marked, and cost against triangle count.
+
+use std::path::{Path, PathBuf};
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::{Results, Row};
+use crate::error::{Error, Result};
+
+const FONT_PATHS: [&str; 2] =
+    ["/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/dejavu/DejaVuSans.ttf"];
+
+/// Registers DejaVu Sans as "sans-serif" for chart text (Debian/Ubuntu: fonts-dejavu-core).
+fn ensure_font() -> Result<()> {
+    static FONT: std::sync::OnceLock<std::result::Result<(), String>> = std::sync::OnceLock::new();
+    FONT.get_or_init(|| {
+        let bytes = FONT_PATHS.iter().find_map(|p| std::fs::read(p).ok()).ok_or_else(|| {
+            format!("no chart font: install fonts-dejavu-core (looked for {})", FONT_PATHS.join(", "))
+        })?;
+        let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+        plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
+            .map_err(|_| "invalid chart font".to_string())
+    })
+    .clone()
+    .map_err(|m| Error::input(FONT_PATHS[0], m))
+}
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(214, 39, 40),
+    RGBColor(31, 119, 180),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+];
+
+fn colour_of(voxelizer: &str) -> RGBColor {
+    match voxelizer {
+        "tess" => PALETTE[0],
+        "raster-msaa" => PALETTE[1],
+        "raster-none" => PALETTE[2],
+        _ => PALETTE[3],
+    }
+}
+
+type DrawResult<DB> = std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values.filter(|v| *v > 0.0).fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+    if lo.is_finite() {
+        lo * 0.7..hi * 1.4
+    } else {
+        0.1..1.0
+    }
+}
+
+fn voxelize_time<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Results) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let res: Vec<u32> = {
+        let mut v: Vec<u32> = r.rows.iter().map(|x| x.resolution).collect();
+        v.sort();
+        v.dedup();
+        v
+    };
+    let y = log_range(r.rows.iter().map(|x| x.voxelize_ms));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("Voxelization GPU time ({})", r.device), ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0f64..(res.len() as f64 - 0.5).max(0.5), y.log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("voxel resolution N")
+        .y_desc("ms (log)")
+        .x_labels(res.len().max(1))
+        .x_label_formatter(&|x| res.get(x.round() as usize).map(|n| format!("{n}³")).unwrap_or_default())
+        .draw()?;
+    let mut series: Vec<(String, String)> = r.rows.iter().map(|x| (x.scene.clone(), x.voxelizer.clone())).collect();
+    series.sort();
+    series.dedup();
+    for (i, (scene, vox)) in series.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = r
+            .rows
+            .iter()
+            .filter(|x| &x.scene == scene && &x.voxelizer == vox)
+            .map(|x| (res.iter().position(|n| *n == x.resolution).unwrap_or(0) as f64, x.voxelize_ms))
+            .collect();
+        let c = colour_of(vox);
+        let style = if i % 2 == 0 { c.stroke_width(2) } else { c.stroke_width(1) };
+        chart
+            .draw_series(LineSeries::new(pts.clone(), style))?
+            .label(format!("{scene} {vox}"))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c));
+        chart.draw_series(pts.iter().map(|p| Circle::new(*p, 3, c.filled())))?;
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    root.present()
+}
+
+const PASSES: [&str; 7] = ["voxelize", "shadow map", "inject", "filter", "gbuffer", "shade", "tonemap"];
+
+fn passes_stacked<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Results) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let rows: Vec<&Row> = r.rows.iter().collect();
+    let top = rows
+        .iter()
+        .map(|x| x.passes.iter().filter(|t| t.pass != "total").map(|t| t.ms).sum::<f64>())
+        .fold(1.0, f64::max)
+        * 1.1;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("GPU time per pass", ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(-0.5f64..rows.len() as f64 - 0.5, 0f64..top)?;
+    chart
+        .configure_mesh()
+        .y_desc("ms")
+        .x_labels(rows.len().max(1))
+        .x_label_style(("sans-serif", 10))
+        .x_desc("scene, voxelizer, N")
+        .x_label_formatter(&|x| {
+            rows.get(x.round() as usize)
+                .map(|r| {
+                    format!(
+                        "{} {} {}",
+                        &r.scene[..r.scene.len().min(3)],
+                        r.voxelizer.trim_start_matches("raster-"),
+                        r.resolution
+                    )
+                })
+                .unwrap_or_default()
+        })
+        .draw()?;
+    for (k, pass) in PASSES.iter().enumerate() {
+        let c = PALETTE[k % PALETTE.len()].mix(if k >= PALETTE.len() { 0.5 } else { 1.0 });
+        let bars: Vec<Rectangle<(f64, f64)>> = rows
+            .iter()
+            .enumerate()
+            .map(|(i, row)| {
+                let below: f64 = PASSES[..k]
+                    .iter()
+                    .map(|p| row.passes.iter().find(|t| t.pass == *p).map(|t| t.ms).unwrap_or(0.0))
+                    .sum();
+                let h = row.passes.iter().find(|t| t.pass == *pass).map(|t| t.ms).unwrap_or(0.0);
+                Rectangle::new([(i as f64 - 0.35, below), (i as f64 + 0.35, below + h)], c.filled())
+            })
+            .collect();
+        chart
+            .draw_series(bars)?
+            .label(*pass)
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], c.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()
+}
+
+/// Indices of the Pareto-optimal points: no other point is both faster and at least as good.
+pub fn pareto(points: &[(f64, f64)], higher_is_better: bool) -> Vec<usize> {
+    let better = |a: f64, b: f64| if higher_is_better { a >= b } else { a <= b };
+    let mut front: Vec<usize> = (0..points.len())
+        .filter(|&i| {
+            !points.iter().enumerate().any(|(j, q)| {
+                j != i && q.0 <= points[i].0 && better(q.1, points[i].1) && (q.0 < points[i].0 || q.1 != points[i].1)
+            })
+        })
+        .collect();
+    front.sort_by(|&a, &b| points[a].0.total_cmp(&points[b].0));
+    front
+}
+
+fn scatter_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    r: &Results,
+    title: &str,
+    y_desc: &str,
+    value: fn(&Row) -> f64,
+    higher_is_better: bool,
+) -> DrawResult<DB> {
+    let pts: Vec<(f64, f64)> = r.rows.iter().map(|x| (x.total_ms, value(x))).collect();
+    let (ylo, yhi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
+    let pad = ((yhi - ylo) * 0.1).max(1e-3);
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), (ylo - pad)..(yhi + pad))?;
+    chart.configure_mesh().x_desc("frame GPU ms (log)").y_desc(y_desc).draw()?;
+    let front = pareto(&pts, higher_is_better);
+    chart
+        .draw_series(LineSeries::new(front.iter().map(|&i| pts[i]), BLACK.stroke_width(1)))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
+    let mut labels: Vec<String> = r.rows.iter().map(|x| x.voxelizer.clone()).collect();
+    labels.dedup();
+    labels.sort();
+    labels.dedup();
+    for vox in labels {
+        let c = colour_of(&vox);
+        chart
+            .draw_series(r.rows.iter().zip(&pts).filter(|(x, _)| x.voxelizer == vox).map(|(x, p)| {
+                EmptyElement::at(*p)
+                    + Circle::new((0, 0), 4, c.filled())
+                    + Text::new(format!("{}", x.resolution), (5, -12), ("sans-serif", 10))
+            }))?
+            .label(vox.clone())
+            .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()
+}
+
+fn speed_vs_accuracy<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Results) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let panels = root.split_evenly((1, 2));
+    scatter_panel(&panels[0], r, "Voxel IoU against exact coverage", "IoU (higher is better)", |x| x.iou, true)?;
+    scatter_panel(
+        &panels[1],
+        r,
+        "Image FLIP against path-traced reference",
+        "FLIP (lower is better)",
+        |x| x.flip as f64,
+        false,
+    )?;
+    root.present()
+}
+
+fn cost_vs_triangles<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Results) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let t = &r.triangle_sweep;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("Voxelization cost against triangle count", ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            log_range(t.iter().map(|x| x.triangles as f64)).log_scale(),
+            log_range(t.iter().map(|x| x.voxelize_ms)).log_scale(),
+        )?;
+    chart.configure_mesh().x_desc("triangles (log)").y_desc("voxelize ms (log)").draw()?;
+    let mut voxelizers: Vec<String> = t.iter().map(|x| x.voxelizer.clone()).collect();
+    voxelizers.sort();
+    voxelizers.dedup();
+    for vox in voxelizers {
+        let c = colour_of(&vox);
+        let pts: Vec<(f64, f64)> =
+            t.iter().filter(|x| x.voxelizer == vox).map(|x| (x.triangles as f64, x.voxelize_ms)).collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
+            .label(vox)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c));
+        chart.draw_series(pts.iter().map(|p| Circle::new(*p, 3, c.filled())))?;
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    root.present()
+}
+
+type Chart = fn(&Path, &Results) -> std::result::Result<(), String>;
+
+macro_rules! both_backends {
+    ($f:ident, $w:expr, $h:expr) => {
+        |path: &Path, r: &Results| -> std::result::Result<(), String> {
+            $f(BitMapBackend::new(&path.with_extension("png"), ($w, $h)).into_drawing_area(), r)
+                .map_err(|e| e.to_string())?;
+            $f(SVGBackend::new(&path.with_extension("svg"), ($w, $h)).into_drawing_area(), r).map_err(|e| e.to_string())
+        }
+    };
+}
+
+/// Draws the four charts into `dir`; returns the files written.
+pub fn draw_all(dir: &Path, r: &Results) -> Result<Vec<PathBuf>> {
+    ensure_font()?;
+    let charts: [(&str, Chart); 4] = [
+        ("voxelize_time", both_backends!(voxelize_time, 900, 560)),
+        ("passes_stacked", both_backends!(passes_stacked, 1000, 640)),
+        ("speed_vs_accuracy", both_backends!(speed_vs_accuracy, 1300, 560)),
+        ("cost_vs_triangles", both_backends!(cost_vs_triangles, 900, 560)),
+    ];
+    let mut files = Vec::new();
+    for (name, draw) in charts {
+        let path = dir.join(name);
+        draw(&path, r).map_err(|m| Error::input(&path, format!("drawing the chart: {m}")))?;
+        files.push(path.with_extension("png"));
+        files.push(path.with_extension("svg"));
+    }
+    Ok(files)
+}

@@ -1,0 +1,296 @@
+//! `vct bench`: sweeps voxelizer × resolution × scene, timing warm frames with GPU timestamps
+//! (median and spread per pass) and measuring accuracy beside every time — voxel recall,
+//! precision and IoU against the exact coverage, FLIP and RMSE of the final image against a
+//! path-traced one-bounce reference (cached on disk by a hash of scene and settings). Writes
+//! `results.csv`, `results.json` and the charts of [`charts`].
+
+pub mod charts;
+
+use std::collections::hash_map::DefaultHasher;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::Vec3;
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::gpu::{timer::median, Context, Timing};
+use crate::output;
+use crate::reference::coverage::{Accuracy, RefGrid};
+use crate::reference::metrics;
+use crate::reference::pathtrace::{PathTracer, RefOptions};
+use crate::render::{RenderOptions, Renderer};
+use crate::scene::{Draw, Mesh, Scene};
+use crate::voxel::{headless, occupancy_of, Coverage, VoxelizeMethod};
+
+pub struct BenchOptions {
+    /// (name, scene) pairs.
+    pub scenes: Vec<(String, Scene)>,
+    pub resolutions: Vec<u32>,
+    pub warmup: u32,
+    pub frames: u32,
+    pub reference_spp: u32,
+    /// Subdivision levels of the triangle-count sweep (each level splits every triangle in 4).
+    pub subdivisions: u32,
+    pub out_dir: PathBuf,
+    pub cache_dir: PathBuf,
+}
+
+/// One configuration's figures.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    pub scene: String,
+    pub triangles: usize,
+    pub voxelizer: String,
+    pub resolution: u32,
+    pub frames: u32,
+    /// Median GPU ms per pass.
+    pub passes: Vec<Timing>,
+    pub total_ms: f64,
+    pub total_min_ms: f64,
+    pub total_max_ms: f64,
+    pub voxelize_ms: f64,
+    pub recall: f64,
+    pub precision: f64,
+    pub iou: f64,
+    pub flip: f32,
+    pub rmse: f64,
+}
+
+/// Voxelization cost against triangle count (a scene subdivided k times).
+#[derive(Clone, Debug, Serialize)]
+pub struct TriangleRow {
+    pub scene: String,
+    pub voxelizer: String,
+    pub triangles: usize,
+    pub voxelize_ms: f64,
+}
+
+#[derive(Serialize)]
+pub struct Results {
+    pub device: String,
+    pub driver: String,
+    pub warmup: u32,
+    pub frames: u32,
+    pub reference_spp: u32,
+    pub reference_bounces: u32,
+    pub references: Vec<ReferenceInfo>,
+    pub rows: Vec<Row>,
+    pub triangle_sweep: Vec<TriangleRow>,
+}
+
+#[derive(Clone, Serialize)]
+pub struct ReferenceInfo {
+    pub scene: String,
+    pub path: PathBuf,
+    pub relative_noise: f32,
+}
+
+/// The voxelizers a device can run: tessellation, rasterized with MSAA and without, and
+/// hardware-conservative rasterization where the extension is offered.
+pub fn methods(ctx: &Context) -> Vec<VoxelizeMethod> {
+    let mut m =
+        vec![VoxelizeMethod::tess(), VoxelizeMethod::raster(Coverage::Msaa), VoxelizeMethod::raster(Coverage::None)];
+    if ctx.info.features.conservative_rasterization {
+        m.push(VoxelizeMethod::raster(Coverage::Hardware));
+    }
+    m
+}
+
+/// Every triangle split into four at its edge midpoints, `levels` times.
+pub fn subdivide_uniform(mesh: &Mesh, levels: u32) -> Mesh {
+    let mut m = mesh.clone();
+    for _ in 0..levels {
+        let mut vertices = m.vertices.clone();
+        let mut indices = Vec::with_capacity(m.indices.len() * 4);
+        let mut draws = Vec::new();
+        for d in &m.draws {
+            let first = indices.len() as u32;
+            for t in m.indices[d.first_index as usize..(d.first_index + d.index_count) as usize].chunks_exact(3) {
+                let mid = |a: u32, b: u32, vs: &mut Vec<crate::scene::Vertex>| {
+                    let (va, vb) = (vs[a as usize], vs[b as usize]);
+                    let avg = |x: &[f32], y: &[f32]| x.iter().zip(y).map(|(p, q)| (p + q) * 0.5).collect::<Vec<f32>>();
+                    let mut v = va;
+                    v.pos.copy_from_slice(&avg(&va.pos, &vb.pos));
+                    v.normal.copy_from_slice(&avg(&va.normal, &vb.normal));
+                    v.uv.copy_from_slice(&avg(&va.uv, &vb.uv));
+                    vs.push(v);
+                    vs.len() as u32 - 1
+                };
+                let (a, b, c) = (t[0], t[1], t[2]);
+                let (ab, bc, ca) = (mid(a, b, &mut vertices), mid(b, c, &mut vertices), mid(c, a, &mut vertices));
+                indices.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
+            }
+            draws.push(Draw { first_index: first, index_count: indices.len() as u32 - first, material: d.material });
+        }
+        m = Mesh { vertices, indices, draws, bounds: m.bounds };
+    }
+    m
+}
+
+/// The path-traced reference of `scene` (one bounce), from the cache when it is there.
+fn reference(
+    scene: &Scene,
+    name: &str,
+    spp: u32,
+    cache: &Path,
+    progress: &dyn Fn(&str),
+) -> Result<(Vec<Vec3>, ReferenceInfo)> {
+    let mut h = DefaultHasher::new();
+    format!(
+        "{:?}|{}|{}|{:?}|{:?}|{spp}|1",
+        scene.source,
+        scene.mesh.triangle_count(),
+        scene.mesh.vertices.len(),
+        scene.camera,
+        scene.light
+    )
+    .hash(&mut h);
+    let path = cache.join(format!("reference-{name}-{:016x}.exr", h.finish()));
+    let noise_path = path.with_extension("noise");
+    if let (Ok(frame), Ok(noise)) = (output::read_frame(&path), std::fs::read_to_string(&noise_path)) {
+        if (frame.width, frame.height) == (scene.camera.width, scene.camera.height) {
+            let relative_noise = noise.trim().parse().unwrap_or(f32::NAN);
+            return Ok((frame.linear(), ReferenceInfo { scene: name.into(), path, relative_noise }));
+        }
+    }
+    progress(&format!("path tracing the {name} reference ({spp} spp)"));
+    let img = PathTracer::new(scene).render(RefOptions { bounces: 1, spp, seed: 1 }, &|_| {});
+    std::fs::create_dir_all(cache).map_err(|source| Error::Io { path: cache.to_path_buf(), source })?;
+    output::write_exr(&path, &crate::render::FrameImages::from_linear(img.width, img.height, &img.radiance))?;
+    std::fs::write(&noise_path, img.relative_noise.to_string())
+        .map_err(|source| Error::Io { path: noise_path.clone(), source })?;
+    Ok((img.radiance, ReferenceInfo { scene: name.into(), path, relative_noise: img.relative_noise }))
+}
+
+fn voxel_accuracy(scene: &Scene, renderer: &Renderer) -> Result<Accuracy> {
+    let g = renderer.voxels.grid;
+    let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
+    let coverage = RefGrid { origin: g.origin, voxel: g.voxel, n: g.resolution }.coverage(&tris, 1e-3);
+    Ok(coverage.accuracy(&occupancy_of(&renderer.voxels.read_albedo()?)))
+}
+
+/// Runs the whole sweep; `progress(step, message)` reports each configuration.
+pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> Result<Results> {
+    let methods = methods(ctx);
+    let mut rows = Vec::new();
+    let mut references = Vec::new();
+    for (name, scene) in &opts.scenes {
+        let (reference, info) = reference(scene, name, opts.reference_spp, &opts.cache_dir, progress)?;
+        let ref_rgb = metrics::tonemap(&reference);
+        references.push(info);
+        for &res in &opts.resolutions {
+            for method in &methods {
+                progress(&format!("{name} {} {res}³", method.label()));
+                let options = RenderOptions { method: *method, resolution: Some(res), ..Default::default() };
+                let renderer = Renderer::new(ctx, scene.clone(), options)?;
+                for _ in 0..opts.warmup {
+                    renderer.render()?;
+                }
+                let runs: Vec<Vec<Timing>> =
+                    (0..opts.frames.max(1)).map(|_| renderer.render()).collect::<Result<_>>()?;
+                let passes = median(&runs);
+                let totals: Vec<f64> =
+                    runs.iter().filter_map(|r| r.iter().find(|t| t.pass == "total").map(|t| t.ms)).collect();
+                let get = |p: &str| passes.iter().find(|t| t.pass == p).map(|t| t.ms).unwrap_or(0.0);
+                let frame = renderer.read_frame()?;
+                let (flip, _) = metrics::flip(&ref_rgb, &frame.rgb8(), frame.width, frame.height);
+                let rmse = metrics::rmse(&reference, &frame.linear());
+                let acc = voxel_accuracy(scene, &renderer)?;
+                rows.push(Row {
+                    scene: name.clone(),
+                    triangles: scene.mesh.triangle_count(),
+                    voxelizer: method.label(),
+                    resolution: res,
+                    frames: opts.frames,
+                    total_ms: get("total"),
+                    total_min_ms: totals.iter().cloned().fold(f64::INFINITY, f64::min),
+                    total_max_ms: totals.iter().cloned().fold(0.0, f64::max),
+                    voxelize_ms: get("voxelize"),
+                    passes,
+                    recall: acc.recall,
+                    precision: acc.precision,
+                    iou: acc.iou,
+                    flip,
+                    rmse,
+                });
+            }
+        }
+    }
+    // Cost against triangle count: the first scene subdivided 0..=k times, smallest resolution.
+    let mut triangle_sweep = Vec::new();
+    if let (Some((name, scene)), Some(&res)) = (opts.scenes.first(), opts.resolutions.first()) {
+        for k in 0..=opts.subdivisions {
+            let mut s = scene.clone();
+            s.mesh = subdivide_uniform(&scene.mesh, k);
+            for method in &methods[..2] {
+                progress(&format!("{name} ×4^{k} triangles, {}", method.label()));
+                let run = headless::voxelize(ctx, &s, *method, res, opts.frames.max(1))?;
+                triangle_sweep.push(TriangleRow {
+                    scene: name.clone(),
+                    voxelizer: method.label(),
+                    triangles: s.mesh.triangle_count(),
+                    voxelize_ms: run.gpu_ms,
+                });
+            }
+        }
+    }
+    Ok(Results {
+        device: ctx.info.name.clone(),
+        driver: ctx.info.driver.clone(),
+        warmup: opts.warmup,
+        frames: opts.frames,
+        reference_spp: opts.reference_spp,
+        reference_bounces: 1,
+        references,
+        rows,
+        triangle_sweep,
+    })
+}
+
+pub const CSV_HEADER: &str = "scene,triangles,voxelizer,resolution,frames,voxelize_ms,shadow_ms,inject_ms,filter_ms,gbuffer_ms,shade_ms,tonemap_ms,total_ms,total_min_ms,total_max_ms,recall,precision,iou,flip,rmse";
+
+/// Writes results.csv, results.json and the charts into `dir`.
+pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
+    let mut csv = String::from(CSV_HEADER);
+    csv.push('\n');
+    for r in &results.rows {
+        let p = |name: &str| r.passes.iter().find(|t| t.pass == name).map(|t| t.ms).unwrap_or(0.0);
+        csv.push_str(&format!(
+            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.6}\n",
+            r.scene,
+            r.triangles,
+            r.voxelizer,
+            r.resolution,
+            r.frames,
+            p("voxelize"),
+            p("shadow map"),
+            p("inject"),
+            p("filter"),
+            p("gbuffer"),
+            p("shade"),
+            p("tonemap"),
+            r.total_ms,
+            r.total_min_ms,
+            r.total_max_ms,
+            r.recall,
+            r.precision,
+            r.iou,
+            r.flip,
+            r.rmse
+        ));
+    }
+    let write = |name: &str, text: &str| -> Result<PathBuf> {
+        let path = dir.join(name);
+        std::fs::write(&path, text).map_err(|source| Error::Io { path: path.clone(), source })?;
+        Ok(path)
+    };
+    let mut files = vec![write("results.csv", &csv)?];
+    let json =
+        serde_json::to_string_pretty(results).map_err(|e| Error::input(dir.join("results.json"), e.to_string()))?;
+    files.push(write("results.json", &json)?);
+    files.extend(charts::draw_all(dir, results)?);
+    Ok(files)
+}

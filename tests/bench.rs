@@ -1,0 +1,47 @@
+//! Issue "Benchmarks": `vct bench --quick` (the CI smoke run) writes CSV, JSON and the four
+//! charts, with the expected columns and one row per configuration.
+
+#[test]
+fn quick_bench_writes_csv_json_and_charts() {
+    let dir = std::env::temp_dir().join(format!("vct-bench-{}", std::process::id()));
+    let out = dir.join("run");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
+        .args(["bench", "--quick", "--validation", "--out", out.to_str().unwrap()])
+        .env("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()))
+        .output()
+        .unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{text}");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next().unwrap(), vct::bench::CSV_HEADER);
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Cornell × {32, 64} × {tess, raster-msaa, raster-none (, raster-hw where offered)}.
+    assert!(rows.len() == 6 || rows.len() == 8, "{} rows:\n{csv}", rows.len());
+    let cols = vct::bench::CSV_HEADER.split(',').count();
+    for r in &rows {
+        assert_eq!(r.len(), cols);
+        let num = |name: &str| -> f64 {
+            let i = vct::bench::CSV_HEADER.split(',').position(|c| c == name).unwrap();
+            r[i].parse().unwrap()
+        };
+        assert!(num("total_ms") > 0.0 && num("voxelize_ms") > 0.0, "{r:?}");
+        assert!((0.9..=1.0).contains(&num("iou")) && (0.0..1.0).contains(&num("flip")), "{r:?}");
+    }
+    for (label, n) in [("tess", 32), ("raster-msaa", 64), ("raster-none", 64)] {
+        assert!(rows.iter().any(|r| r[2] == label && r[3] == n.to_string()), "no {label} {n} row");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    assert_eq!(json["rows"].as_array().unwrap().len(), rows.len());
+    assert!(json["triangle_sweep"].as_array().unwrap().len() >= 6);
+    assert!(!json["device"].as_str().unwrap().is_empty());
+    for chart in ["voxelize_time", "passes_stacked", "speed_vs_accuracy", "cost_vs_triangles"] {
+        for ext in ["png", "svg"] {
+            let p = out.join(format!("{chart}.{ext}"));
+            assert!(std::fs::metadata(&p).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", p.display());
+        }
+    }
+    // The reference was cached beside the run: a second run would not path-trace again.
+    assert!(std::fs::read_dir(dir.join("cache")).unwrap().count() >= 2);
+}
