@@ -65,6 +65,13 @@ struct BenchArgs {
     /// A short run for CI: Cornell at 32³ and 64³, 128×128, few frames, a 16-spp reference.
     #[arg(long)]
     quick: bool,
+    /// Redraw the charts and summary of an earlier run from DIR/results.json.
+    #[arg(long, value_name = "DIR")]
+    replot: Option<PathBuf>,
+    /// Measure where each method fails (tessellation limit, raster cracks, small triangles,
+    /// self-illumination) instead of the speed/accuracy sweep.
+    #[arg(long)]
+    stability: bool,
     /// Output folder; default bench/<date>-<device>.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -129,6 +136,10 @@ struct ViewArgs {
     /// Resize the window to WxH a third of the way through --frames.
     #[arg(long, value_parser = parse_size)]
     resize_to: Option<(u32, u32)>,
+    /// Soak test: move camera and light, switch voxelizer and resolution on a schedule, and
+    /// compare GPU and host memory at frame 180 and 540 (use --frames 541 or more).
+    #[arg(long)]
+    soak: bool,
     #[command(flatten)]
     gpu: GpuArgs,
 }
@@ -188,8 +199,8 @@ struct MethodArgs {
     #[arg(long)]
     no_min_level: bool,
     /// Rasterized path: framebuffer resolution over voxel resolution.
-    #[arg(long, default_value_t = 1)]
-    viewport_scale: u32,
+    #[arg(long, default_value_t = 1.0)]
+    viewport_scale: f32,
     /// Rasterized path: write only the voxel at each pixel centre's depth (the thesis' method).
     #[arg(long)]
     no_depth_span: bool,
@@ -200,8 +211,8 @@ impl MethodArgs {
         if !(self.level_scale.is_finite() && self.level_scale > 0.0 && self.level_scale <= 16.0) {
             bail!("--level-scale must be in (0, 16], got {}", self.level_scale);
         }
-        if !(1..=8).contains(&self.viewport_scale) {
-            bail!("--viewport-scale must be in 1..=8, got {}", self.viewport_scale);
+        if !(self.viewport_scale.is_finite() && (0.125..=8.0).contains(&self.viewport_scale)) {
+            bail!("--viewport-scale must be in 0.125..=8, got {}", self.viewport_scale);
         }
         Ok(match self.voxelizer {
             VoxelizerArg::Tess => VoxelizeMethod::Tess {
@@ -417,6 +428,7 @@ fn view(args: ViewArgs) -> Result<()> {
         frames: args.frames,
         screenshot: args.screenshot,
         resize_to: args.resize_to,
+        soak: args.soak,
     })
     .context("running the viewer")?;
     println!(
@@ -425,6 +437,15 @@ fn view(args: ViewArgs) -> Result<()> {
         report.gpu_bytes_start as f64 / 1048576.0,
         report.gpu_bytes_end as f64 / 1048576.0
     );
+    if let (Some((g0, h0)), Some((g1, h1))) = (report.soak_baseline, report.soak_end) {
+        println!(
+            "soak: GPU memory {:.2} MiB at frame 180, {:.2} MiB at the last same-settings frame; host resident {:.1} MiB, {:.1} MiB",
+            g0 as f64 / 1048576.0,
+            g1 as f64 / 1048576.0,
+            h0 as f64 / 1048576.0,
+            h1 as f64 / 1048576.0
+        );
+    }
     if report.validation_errors + report.validation_warnings > 0 {
         bail!(
             "the validation layer reported {} error(s) and {} warning(s)",
@@ -504,6 +525,13 @@ fn compare(args: CompareArgs) -> Result<()> {
 }
 
 fn bench(args: BenchArgs) -> Result<()> {
+    if let Some(dir) = &args.replot {
+        let results = vct::bench::read_results(&dir.join("results.json"))?;
+        for f in vct::bench::write(dir, &results)? {
+            println!("wrote {}", f.display());
+        }
+        return Ok(());
+    }
     let mut scenes = vec![("cornell".to_string(), Scene::embedded_default()?)];
     for p in &args.scenes {
         let name = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
@@ -519,6 +547,27 @@ fn bench(args: BenchArgs) -> Result<()> {
         ctx.info.name.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '-' }).collect();
     let date = time::OffsetDateTime::now_utc().date();
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from(format!("bench/{date}-{}", slug.trim_matches('-'))));
+    if args.stability {
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        let regimes = vct::bench::stability::run(&ctx, args.quick, &|m| bar.set_message(m.to_string()))?;
+        bar.finish_and_clear();
+        std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+        for g in &regimes {
+            println!("{}", g.title);
+            for s in &g.series {
+                let pts: Vec<String> = s.points.iter().map(|(x, y)| format!("{x}: {y:.4}")).collect();
+                println!("  {:<32} {}", s.label, pts.join("  "));
+            }
+            for f in vct::bench::charts::draw_regime(&out, g)? {
+                println!("wrote {}", f.display());
+            }
+        }
+        let json = out.join("stability.json");
+        std::fs::write(&json, serde_json::to_string_pretty(&regimes)?).with_context(|| format!("writing {}", json.display()))?;
+        println!("wrote {}", json.display());
+        return check_validation(&ctx);
+    }
     let opts = vct::bench::BenchOptions {
         scenes,
         resolutions: args.res.clone().unwrap_or(if args.quick { vec![32, 64] } else { vec![64, 128, 256] }),

@@ -72,3 +72,17 @@ fn resize_recreates_the_swapchain_cleanly() {
     assert!(text.contains("frames: 24"), "{text}");
     assert_eq!(load(&shot).dimensions(), (200, 150), "the last frame was not rendered at the new size");
 }
+
+#[test]
+fn soak_keeps_gpu_and_host_memory_flat() {
+    let text = run(
+        &["view", "--soak", "--frames", "541", "--width", "64", "--height", "64", "--res", "16", "--validation"],
+        true,
+    );
+    let line = text.lines().find(|l| l.starts_with("soak:")).unwrap_or_else(|| panic!("no soak report:\n{text}"));
+    let mib: Vec<f64> = line.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+    let [gpu0, gpu1, host0, host1] = mib[..] else { panic!("{line}") };
+    println!("{line}");
+    assert!((gpu1 - gpu0).abs() < 0.01, "GPU memory grew: {line}");
+    assert!(host1 - host0 < 16.0, "host memory grew: {line}");
+}

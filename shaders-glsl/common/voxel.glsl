@@ -7,8 +7,8 @@
 
 layout(set = 2, binding = 0) uniform VoxelParams {
     vec4 origin_size;   // xyz: grid origin (world); w: voxel edge length
-    uvec4 grid;         // x: resolution N; y: flags (VOXEL_FLAG_*); z: raster viewport scale
-    vec4 tess;          // x: tessellation level scale; y: max tessellation level
+    uvec4 grid;         // x: resolution N; y: flags (VOXEL_FLAG_*)
+    vec4 tess;          // x: tessellation level scale; y: max tessellation level; z: raster viewport scale
 } voxel;
 
 layout(set = 2, binding = 1, r32ui) uniform coherent volatile uimage3D voxel_albedo;

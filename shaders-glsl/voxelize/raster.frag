@@ -22,7 +22,7 @@ vec3 unswizzle(vec3 v, uint axis) {
 
 void main() {
     float res = float(voxel.grid.x);
-    float scale = float(voxel.grid.z);
+    float scale = voxel.tess.z;
     vec2 xy = floor(gl_FragCoord.xy / scale);
     float z = gl_FragCoord.z * res;
     Material m = materials[push.material];

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::stability::Regime;
 use super::{Results, Row};
 use crate::error::{Error, Result};
 
@@ -293,4 +294,50 @@ pub fn draw_all(dir: &Path, r: &Results) -> Result<Vec<PathBuf>> {
         files.push(path.with_extension("svg"));
     }
     Ok(files)
+}
+
+fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let pts = || g.series.iter().flat_map(|s| s.points.iter().copied());
+    let (xlo, xhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.0), h.max(p.0)));
+    let (ylo, yhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
+    let pad = ((yhi - ylo) * 0.1).max(1e-3);
+    fn builder<'a, 'b, DB: DrawingBackend>(area: &'a DrawingArea<DB, Shift>, title: &str) -> ChartBuilder<'a, 'b, DB> {
+        let mut b = ChartBuilder::on(area);
+        b.caption(title, ("sans-serif", 20)).margin(12).x_label_area_size(40).y_label_area_size(60);
+        b
+    }
+    let yr = (ylo - pad)..(yhi + pad);
+    macro_rules! body {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart.configure_mesh().x_desc(g.x.as_str()).y_desc(g.y.as_str()).draw()?;
+            for (i, s) in g.series.iter().enumerate() {
+                let c = PALETTE[i % PALETTE.len()];
+                chart
+                    .draw_series(LineSeries::new(s.points.clone(), c.stroke_width(2)))?
+                    .label(s.label.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c));
+                chart.draw_series(s.points.iter().map(|p| Circle::new(*p, 3, c.filled())))?;
+            }
+            chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+        }};
+    }
+    if g.log_x {
+        body!(builder(&root, &g.title).build_cartesian_2d((xlo * 0.8..xhi * 1.25).log_scale(), yr)?);
+    } else {
+        let xp = ((xhi - xlo) * 0.05).max(1e-3);
+        body!(builder(&root, &g.title).build_cartesian_2d(xlo - xp..xhi + xp, yr)?);
+    }
+    root.present()
+}
+
+/// Draws one stability regime as `stability_<name>.png` and `.svg` in `dir`.
+pub fn draw_regime(dir: &Path, g: &Regime) -> Result<Vec<PathBuf>> {
+    ensure_font()?;
+    let path = dir.join(format!("stability_{}", g.name));
+    let err = |m: String| Error::input(&path, format!("drawing the chart: {m}"));
+    regime_chart(BitMapBackend::new(&path.with_extension("png"), (900, 560)).into_drawing_area(), g).map_err(|e| err(e.to_string()))?;
+    regime_chart(SVGBackend::new(&path.with_extension("svg"), (900, 560)).into_drawing_area(), g).map_err(|e| err(e.to_string()))?;
+    Ok(vec![path.with_extension("png"), path.with_extension("svg")])
 }

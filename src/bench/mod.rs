@@ -5,6 +5,7 @@
 //! `results.csv`, `results.json` and the charts of [`charts`].
 
 pub mod charts;
+pub mod stability;
 
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
@@ -12,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::Vec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::gpu::{timer::median, Context, Timing};
@@ -38,7 +39,7 @@ pub struct BenchOptions {
 }
 
 /// One configuration's figures.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Row {
     pub scene: String,
     pub triangles: usize,
@@ -59,7 +60,7 @@ pub struct Row {
 }
 
 /// Voxelization cost against triangle count (a scene subdivided k times).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct TriangleRow {
     pub scene: String,
     pub voxelizer: String,
@@ -67,7 +68,7 @@ pub struct TriangleRow {
     pub voxelize_ms: f64,
 }
 
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
 pub struct Results {
     pub device: String,
     pub driver: String,
@@ -80,7 +81,7 @@ pub struct Results {
     pub triangle_sweep: Vec<TriangleRow>,
 }
 
-#[derive(Clone, Serialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct ReferenceInfo {
     pub scene: String,
     pub path: PathBuf,
@@ -291,6 +292,44 @@ pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
     let json =
         serde_json::to_string_pretty(results).map_err(|e| Error::input(dir.join("results.json"), e.to_string()))?;
     files.push(write("results.json", &json)?);
+    files.push(write("summary.md", &summary(results))?);
     files.extend(charts::draw_all(dir, results)?);
     Ok(files)
+}
+
+/// Reads a results.json written by [`write`].
+pub fn read_results(path: &Path) -> Result<Results> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+    serde_json::from_str(&text).map_err(|e| Error::input(path, format!("not a vct results file: {e}")))
+}
+
+/// The results as Markdown tables (for docs/benchmarks.md).
+pub fn summary(r: &Results) -> String {
+    let mut s = format!(
+        "Device: {} ({}). {} warm-up and {} timed frames per configuration (median; frame min–max \
+         shown). Image reference: path traced, 1 bounce, {} spp.\n\n",
+        r.device, r.driver, r.warmup, r.frames, r.reference_spp
+    );
+    for reference in &r.references {
+        s.push_str(&format!("- {} reference noise: {:.2}% (mean standard error over mean)\n", reference.scene, 100.0 * reference.relative_noise));
+    }
+    s.push_str("\n| scene | voxelizer | N | voxelize ms | frame ms (min–max) | recall | precision | IoU | FLIP | RMSE |\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
+    for x in &r.rows {
+        s.push_str(&format!(
+            "| {} | {} | {} | {:.2} | {:.1} ({:.1}–{:.1}) | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |\n",
+            x.scene, x.voxelizer, x.resolution, x.voxelize_ms, x.total_ms, x.total_min_ms, x.total_max_ms, x.recall, x.precision, x.iou, x.flip, x.rmse
+        ));
+    }
+    s.push_str("\nTess/raster (MSAA) voxelization time ratio:\n\n| scene | N | tess ms | raster ms | ratio |\n|---|---|---|---|---|\n");
+    for t in r.rows.iter().filter(|x| x.voxelizer == "tess") {
+        if let Some(m) = r.rows.iter().find(|x| x.voxelizer == "raster-msaa" && x.scene == t.scene && x.resolution == t.resolution) {
+            s.push_str(&format!("| {} | {} | {:.2} | {:.2} | {:.1} |\n", t.scene, t.resolution, t.voxelize_ms, m.voxelize_ms, t.voxelize_ms / m.voxelize_ms.max(1e-9)));
+        }
+    }
+    s.push_str("\nVoxelization cost against triangle count:\n\n| scene | voxelizer | triangles | voxelize ms |\n|---|---|---|---|\n");
+    for t in &r.triangle_sweep {
+        s.push_str(&format!("| {} | {} | {} | {:.2} |\n", t.scene, t.voxelizer, t.triangles, t.voxelize_ms));
+    }
+    s
 }

@@ -18,7 +18,7 @@ pub struct GpuTimer {
 }
 
 /// One timed span: a pass name and its GPU time in milliseconds.
-#[derive(Clone, Debug, serde::Serialize)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Timing {
     pub pass: String,
     pub ms: f64,

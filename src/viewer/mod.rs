@@ -50,6 +50,9 @@ pub struct ViewerOptions {
     pub screenshot: Option<PathBuf>,
     /// Ask the window for this size a third of the way through `frames`.
     pub resize_to: Option<(u32, u32)>,
+    /// Soak test: move camera and light every frame, switch voxelizer every 60 frames and
+    /// resolution every 90, and compare memory at frames 180 and 540, 900, ... (same settings).
+    pub soak: bool,
 }
 
 /// What a run of the viewer did.
@@ -59,7 +62,23 @@ pub struct ViewerReport {
     pub validation_warnings: u32,
     pub gpu_bytes_start: u64,
     pub gpu_bytes_end: u64,
+    /// Soak runs: GPU bytes and resident host bytes at frame 180 and at the last of 540, 900, ...
+    pub soak_baseline: Option<(u64, u64)>,
+    pub soak_end: Option<(u64, u64)>,
 }
+
+/// Resident set size of this process in bytes (Linux), 0 where unknown.
+pub fn resident_bytes() -> u64 {
+    std::fs::read_to_string("/proc/self/statm")
+        .ok()
+        .and_then(|s| s.split_whitespace().nth(1).and_then(|p| p.parse::<u64>().ok()))
+        .map(|pages| pages * 4096)
+        .unwrap_or(0)
+}
+
+/// Soak schedule: the voxelizer flips every 60 frames and the resolution every 90, so frames
+/// 180, 540, 900, ... run the same settings; memory is compared between those frames.
+pub const SOAK_CYCLE: u32 = 180;
 
 const VIEWS: [View; 11] = [
     View::Full,
@@ -97,6 +116,8 @@ struct App {
     error: Option<Error>,
     frames: u32,
     report: Option<ViewerReport>,
+    soak_baseline: Option<(u64, u64)>,
+    soak_end: Option<(u64, u64)>,
 }
 
 fn key_axis(code: KeyCode, plus: KeyCode, minus: KeyCode, pressed: bool, axis: &mut f32) {
@@ -185,6 +206,8 @@ impl App {
                 validation_warnings: ctx.validation.warnings(),
                 gpu_bytes_start,
                 gpu_bytes_end,
+                soak_baseline: self.soak_baseline,
+                soak_end: self.soak_end,
             });
         }
     }
@@ -266,6 +289,33 @@ impl App {
         Ok(())
     }
 
+    /// One soak frame: the camera circles the scene, the light swings, and the voxelizer and
+    /// resolution change on a fixed schedule.
+    fn soak_step(r: &mut Running, frame: u32) -> Result<()> {
+        let b = r.renderer.scene.mesh.bounds;
+        let angle = frame as f32 * 0.05;
+        let radius = b.size().length() * 0.9;
+        let cam = &mut r.renderer.scene.camera;
+        cam.target = b.center();
+        cam.eye = b.center() + glam::Vec3::new(angle.sin() * radius, b.size().y * 0.3, angle.cos() * radius);
+        swing_light(&mut r.renderer.scene.light, 0.03, 0.02 * angle.cos());
+        if frame > 0 && frame % 60 == 0 {
+            let mut o = r.renderer.options;
+            o.method = match o.method {
+                VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Msaa),
+                VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
+            };
+            Self::rebuild(r, o)?;
+        }
+        if frame > 0 && frame % 90 == 0 {
+            let mut o = r.renderer.options;
+            let n = r.renderer.voxels.grid.resolution;
+            o.resolution = Some(if (frame / 90) % 2 == 1 { n * 2 } else { n / 2 });
+            Self::rebuild(r, o)?;
+        }
+        Ok(())
+    }
+
     fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
         let Some(r) = self.running.as_mut() else { return Ok(()) };
         let size = r.window.inner_size();
@@ -279,6 +329,18 @@ impl App {
         let now = Instant::now();
         let dt = (now - r.last_frame).as_secs_f32().min(0.25);
         r.last_frame = now;
+        if self.options.soak {
+            Self::soak_step(r, self.frames)?;
+            // Frames 180, 540, 900, ... run the same voxelizer and resolution.
+            if self.frames >= SOAK_CYCLE && (self.frames - SOAK_CYCLE) % (2 * SOAK_CYCLE) == 0 {
+                let snapshot = Some((r.ctx.allocated_bytes(), resident_bytes()));
+                if self.soak_baseline.is_none() {
+                    self.soak_baseline = snapshot;
+                } else {
+                    self.soak_end = snapshot;
+                }
+            }
+        }
         r.camera.update(&mut r.renderer.scene.camera, &mut r.input, dt);
         let (yaw, pitch) = light_step(&r.input, dt);
         if yaw != 0.0 || pitch != 0.0 {
@@ -405,7 +467,7 @@ pub fn run(options: ViewerOptions) -> Result<ViewerReport> {
     let event_loop = EventLoop::new()
         .map_err(|e| Error::Loader(format!("cannot start the window system (is DISPLAY set?): {e}")))?;
     event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = App { options, running: None, error: None, frames: 0, report: None };
+    let mut app = App { options, running: None, error: None, frames: 0, report: None, soak_baseline: None, soak_end: None };
     event_loop.run_app(&mut app).map_err(|e| Error::Loader(format!("event loop: {e}")))?;
     app.finish();
     if let Some(e) = app.error {

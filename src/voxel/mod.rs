@@ -45,8 +45,9 @@ pub enum VoxelizeMethod {
     },
     Raster {
         coverage: Coverage,
-        /// Framebuffer resolution over voxel resolution (1 = one pixel per voxel).
-        viewport_scale: u32,
+        /// Framebuffer resolution over voxel resolution (1 = one pixel per voxel; below 1 the
+        /// fragments are sparser than the voxels and leave cracks).
+        viewport_scale: f32,
         /// Write every voxel layer the triangle spans within a pixel.
         depth_span: bool,
     },
@@ -61,7 +62,7 @@ impl VoxelizeMethod {
         VoxelizeMethod::Tess { level_scale: DEFAULT_LEVEL_SCALE, subdivide: true, min_level: true }
     }
     pub fn raster(coverage: Coverage) -> Self {
-        VoxelizeMethod::Raster { coverage, viewport_scale: 1, depth_span: true }
+        VoxelizeMethod::Raster { coverage, viewport_scale: 1.0, depth_span: true }
     }
 
     /// The device features this method needs.
@@ -131,14 +132,14 @@ pub(crate) fn voxel_set(
 pub(crate) fn params_for(
     grid: &VoxelGrid,
     flags: u32,
-    viewport_scale: u32,
+    viewport_scale: f32,
     level_scale: f32,
     max_level: f32,
 ) -> VoxelParams {
     VoxelParams {
         origin_size: grid.origin.extend(grid.voxel).into(),
-        grid: [grid.resolution, flags, viewport_scale, 0],
-        tess: [level_scale, max_level, 0.0, 0.0],
+        grid: [grid.resolution, flags, 0, 0],
+        tess: [level_scale, max_level, viewport_scale, 0.0],
     }
 }
 

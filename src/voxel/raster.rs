@@ -27,11 +27,11 @@ impl RasterVoxelizer {
         scene_gpu: &SceneGpu,
         volume: &VoxelVolume,
         coverage: Coverage,
-        viewport_scale: u32,
+        viewport_scale: f32,
         depth_span: bool,
     ) -> Result<Self> {
-        let viewport_scale = viewport_scale.clamp(1, 8);
-        let size = volume.grid.resolution * viewport_scale;
+        let viewport_scale = viewport_scale.clamp(0.125, 8.0);
+        let size = ((volume.grid.resolution as f32 * viewport_scale).round() as u32).max(1);
         let max = ctx.info.limits.max_framebuffer_width.min(ctx.info.limits.max_framebuffer_height);
         if size > max {
             return Err(crate::Error::param(

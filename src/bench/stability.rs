@@ -1,0 +1,184 @@
+//! `vct bench --stability`: where each method fails, measured with its fix off and on.
+//! 1. tessellation limit — recall against triangle size, with and without subdivision;
+//! 2. raster cracks — recall against viewport scale (fragments sparser than voxels), with and
+//!    without MSAA, and recall against triangle size for sub-voxel triangles;
+//! 5. self-illumination — indirect light a lone lit plane gives itself, against the cone offset.
+//! (Regimes 3, light leaking through thin walls, and 4, temporal flicker, are not measured yet.)
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::gpu::Context;
+use crate::reference::coverage::RefGrid;
+use crate::render::{RenderOptions, Renderer, View};
+use crate::scene::{Camera, Light, Scene};
+use crate::voxel::headless::voxelize_in;
+use crate::voxel::{Coverage, VoxelGrid, VoxelizeMethod, DEFAULT_LEVEL_SCALE};
+
+/// One curve: a label and its (x, y) points.
+#[derive(Clone, Debug, Serialize)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Regime {
+    pub name: String,
+    pub title: String,
+    pub x: String,
+    pub y: String,
+    pub log_x: bool,
+    pub series: Vec<Series>,
+}
+
+fn recall(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid) -> Result<f64> {
+    let run = voxelize_in(ctx, scene, method, grid, 1)?;
+    let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
+    let cov = RefGrid { origin: grid.origin, voxel: grid.voxel, n: grid.resolution }.coverage(&tris, 1e-3);
+    Ok(cov.accuracy(&run.occupied()).recall)
+}
+
+fn unit_grid(n: u32) -> VoxelGrid {
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, resolution: n }
+}
+
+fn tess(subdivide: bool) -> VoxelizeMethod {
+    VoxelizeMethod::Tess { level_scale: DEFAULT_LEVEL_SCALE, subdivide, min_level: true }
+}
+
+/// Regime 1: a right triangle with legs of `size` voxels in a 128³ grid.
+pub fn tessellation_limit(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
+    let mut series = Vec::new();
+    for subdivide in [false, true] {
+        let mut points = Vec::new();
+        for &s in sizes {
+            let t = [Vec3::new(3.5, 3.5, 61.5), Vec3::new(3.5 + s, 3.5, 61.5), Vec3::new(3.5, 3.5 + s, 61.5)];
+            let scene = Scene::from_triangles(&[(t, 0)], &[Vec3::splat(0.8)]);
+            points.push((s as f64, recall(ctx, &scene, tess(subdivide), unit_grid(128))?));
+        }
+        series.push(Series { label: format!("tess, subdivision {}", if subdivide { "on (fix)" } else { "off" }), points });
+    }
+    Ok(Regime {
+        name: "tess_limit".into(),
+        title: "1. Tessellation level limit".into(),
+        x: "triangle leg (voxels)".into(),
+        y: "recall".into(),
+        log_x: false,
+        series,
+    })
+}
+
+/// Regime 2a: the Cornell box at 64³ rasterized at `scales` × the voxel resolution.
+pub fn raster_cracks(ctx: &Arc<Context>, scales: &[f32]) -> Result<Regime> {
+    let scene = Scene::embedded_default()?;
+    let grid = VoxelGrid::fit(&scene.mesh.bounds, 64)?;
+    let mut series = Vec::new();
+    for coverage in [Coverage::None, Coverage::Msaa] {
+        let mut points = Vec::new();
+        for &s in scales {
+            let m = VoxelizeMethod::Raster { coverage, viewport_scale: s, depth_span: true };
+            points.push((s as f64, recall(ctx, &scene, m, grid)?));
+        }
+        series.push(Series { label: VoxelizeMethod::raster(coverage).label(), points });
+    }
+    Ok(Regime {
+        name: "raster_cracks".into(),
+        title: "2. Raster cracks: fragments sparser than voxels".into(),
+        x: "viewport scale (pixels per voxel)".into(),
+        y: "recall (Cornell, 64³)".into(),
+        log_x: true,
+        series,
+    })
+}
+
+/// Regime 2b: 400 random triangles of a given size (voxels) in a 32³ grid.
+pub fn subvoxel_triangles(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
+    let mut series: Vec<Series> = Vec::new();
+    let methods = [tess(true), VoxelizeMethod::raster(Coverage::Msaa), VoxelizeMethod::raster(Coverage::None)];
+    for m in methods {
+        series.push(Series { label: m.label(), points: Vec::new() });
+    }
+    for &s in sizes {
+        let mut rng = SmallRng::seed_from_u64(5);
+        let mut tris = Vec::new();
+        for _ in 0..400 {
+            let c = Vec3::new(rng.gen_range(2.0..30.0), rng.gen_range(2.0..30.0), rng.gen_range(2.0..30.0));
+            let mut corner = || c + Vec3::new(rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5) * s;
+            tris.push(([corner(), corner(), corner()], 0));
+        }
+        let scene = Scene::from_triangles(&tris, &[Vec3::splat(0.8)]);
+        for (m, ser) in methods.iter().zip(&mut series) {
+            ser.points.push((s as f64, recall(ctx, &scene, *m, unit_grid(32))?));
+        }
+    }
+    Ok(Regime {
+        name: "subvoxel".into(),
+        title: "2. Small triangles and slivers".into(),
+        x: "triangle size (voxels)".into(),
+        y: "recall".into(),
+        log_x: true,
+        series,
+    })
+}
+
+/// A lone square lit from above, seen from above: any indirect light on it is self-illumination.
+pub fn lone_plane() -> Scene {
+    let q = [Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(-1.0, 0.0, 1.0)];
+    let mut scene = Scene::from_triangles(&[([q[0], q[2], q[1]], 0), ([q[0], q[3], q[2]], 0)], &[Vec3::splat(0.8)]);
+    scene.light = Light::Directional { direction: Vec3::new(0.2, -1.0, 0.1).normalize(), irradiance: Vec3::splat(3.0) };
+    scene.camera =
+        Camera { eye: Vec3::new(0.0, 2.5, 0.01), target: Vec3::ZERO, up: Vec3::Z, fov_y_deg: 30.0, width: 64, height: 64 };
+    scene
+}
+
+/// Mean indirect over mean direct radiance on the lone plane with cone offset `bias` voxels.
+pub fn self_illumination_ratio(ctx: &Arc<Context>, bias: f32, resolution: u32) -> Result<f64> {
+    let mean = |view: View| -> Result<f64> {
+        let mut scene = lone_plane();
+        scene.settings.gi.bias = bias;
+        let o = RenderOptions { method: VoxelizeMethod::raster(Coverage::Msaa), resolution: Some(resolution), view, ..Default::default() };
+        let r = Renderer::new(ctx, scene, o)?;
+        r.render()?;
+        let f = r.read_frame()?;
+        let px: Vec<f32> = f.hdr.chunks_exact(4).map(|p| p[1]).collect();
+        Ok(px.iter().map(|&v| v as f64).sum::<f64>() / px.len() as f64)
+    };
+    Ok(mean(View::Indirect)? / mean(View::Direct)?.max(1e-9))
+}
+
+/// Regime 5: self-illumination against the cone offset.
+pub fn self_illumination(ctx: &Arc<Context>, biases: &[f32]) -> Result<Regime> {
+    let mut series = Vec::new();
+    for res in [32, 64] {
+        let points = biases.iter().map(|&b| Ok((b as f64, self_illumination_ratio(ctx, b, res)?))).collect::<Result<_>>()?;
+        series.push(Series { label: format!("{res}³"), points });
+    }
+    Ok(Regime {
+        name: "self_illumination".into(),
+        title: "5. Self-illumination of a lone lit plane".into(),
+        x: "cone offset along the normal (voxels)".into(),
+        y: "indirect / direct (truth: 0)".into(),
+        log_x: false,
+        series,
+    })
+}
+
+/// All measured regimes (`quick`: fewer points).
+pub fn run(ctx: &Arc<Context>, quick: bool, progress: &dyn Fn(&str)) -> Result<Vec<Regime>> {
+    let pick = |full: &[f32], q: &[f32]| if quick { q.to_vec() } else { full.to_vec() };
+    progress("1. tessellation limit");
+    let r1 = tessellation_limit(ctx, &pick(&[8.0, 16.0, 24.0, 32.0, 48.0, 64.0, 96.0, 120.0], &[16.0, 64.0, 120.0]))?;
+    progress("2. raster cracks");
+    let r2 = raster_cracks(ctx, &pick(&[0.25, 0.5, 0.75, 1.0, 2.0], &[0.5, 1.0]))?;
+    progress("2. small triangles");
+    let r2b = subvoxel_triangles(ctx, &pick(&[0.1, 0.2, 0.4, 0.7, 1.0, 2.0, 4.0], &[0.2, 2.0]))?;
+    progress("5. self-illumination");
+    let r5 = self_illumination(ctx, &pick(&[0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0], &[0.0, 1.5]))?;
+    Ok(vec![r1, r2, r2b, r5])
+}

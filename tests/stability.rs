@@ -1,0 +1,43 @@
+//! Issue "Stability": each failure regime reproduced with its fix off, and shown to hold with
+//! the fix on (regime 1, the tessellation limit, is in tests/voxelize.rs).
+
+mod common;
+
+use vct::bench::stability::{raster_cracks, self_illumination_ratio, subvoxel_triangles};
+
+#[test]
+fn raster_cracks_appear_below_one_pixel_per_voxel() {
+    let ctx = common::context();
+    let r = raster_cracks(&ctx, &[0.5, 1.0]).unwrap();
+    let none = &r.series.iter().find(|s| s.label == "raster-none").unwrap().points;
+    let msaa = &r.series.iter().find(|s| s.label == "raster-msaa").unwrap().points;
+    println!("none {none:?}\nmsaa {msaa:?}");
+    assert!(none[0].1 < 0.8, "half-resolution rasterization should crack: recall {}", none[0].1);
+    assert!(none[1].1 >= 0.99 && msaa[1].1 >= 0.99, "full resolution holds: {} / {}", none[1].1, msaa[1].1);
+    common::assert_clean(&ctx);
+}
+
+#[test]
+fn small_triangles_are_dropped_by_sampling_but_not_by_tessellation() {
+    let ctx = common::context();
+    let r = subvoxel_triangles(&ctx, &[0.2, 2.0]).unwrap();
+    let get = |l: &str| r.series.iter().find(|s| s.label == l).unwrap().points.clone();
+    let (t, m, n) = (get("tess"), get("raster-msaa"), get("raster-none"));
+    println!("tess {t:?}\nmsaa {m:?}\nnone {n:?}");
+    assert!(t[0].1 >= 0.95, "tessellation keeps small triangles: {}", t[0].1);
+    assert!(n[0].1 < 0.5 && m[0].1 < t[0].1, "sampling drops them: none {} msaa {}", n[0].1, m[0].1);
+    assert!(n[1].1 > n[0].1 + 0.1 && m[1].1 > m[0].1 + 0.3, "larger triangles are kept more: none {} msaa {}", n[1].1, m[1].1);
+    common::assert_clean(&ctx);
+}
+
+#[test]
+fn a_lit_plane_lights_itself_without_the_cone_offset() {
+    let ctx = common::context();
+    let off = self_illumination_ratio(&ctx, 0.0, 32).unwrap();
+    let default = self_illumination_ratio(&ctx, 1.5, 32).unwrap();
+    let far = self_illumination_ratio(&ctx, 3.0, 32).unwrap();
+    println!("indirect/direct on a lone plane (truth 0): offset 0 → {off:.4}, 1.5 → {default:.4}, 3 → {far:.4}");
+    assert!(off > 0.3, "no self-illumination without the offset? {off}");
+    assert!(default < off / 2.0 && far < off / 8.0, "the offset does not remove it: {off} → {default} → {far}");
+    common::assert_clean(&ctx);
+}
