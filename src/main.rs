@@ -165,6 +165,12 @@ enum VoxelizerArg {
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum FilterArg {
+    Iso,
+    Aniso,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum TracingArg {
     Forward,
     Deferred,
@@ -275,6 +281,9 @@ struct RenderArgs {
     /// Direct light only: skip cone tracing.
     #[arg(long)]
     no_gi: bool,
+    /// Radiance mip filtering: the thesis' isotropic 8-child average, or six directional chains.
+    #[arg(long, value_enum, default_value = "iso")]
+    filter: FilterArg,
     /// Where cone tracing runs: a fragment shader after a depth prepass, or compute over a G-buffer.
     #[arg(long, value_enum, default_value = "deferred")]
     tracing: TracingArg,
@@ -334,6 +343,7 @@ fn render(args: RenderArgs) -> Result<()> {
         view: args.view,
         gi: !args.no_gi,
         tracing,
+        anisotropic: args.filter == FilterArg::Aniso,
     };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
@@ -564,7 +574,8 @@ fn bench(args: BenchArgs) -> Result<()> {
             }
         }
         let json = out.join("stability.json");
-        std::fs::write(&json, serde_json::to_string_pretty(&regimes)?).with_context(|| format!("writing {}", json.display()))?;
+        std::fs::write(&json, serde_json::to_string_pretty(&regimes)?)
+            .with_context(|| format!("writing {}", json.display()))?;
         println!("wrote {}", json.display());
         return check_validation(&ctx);
     }

@@ -69,6 +69,50 @@ fn every_mip_level_is_the_box_filter_of_the_level_below() {
     common::assert_clean(&ctx);
 }
 
+#[test]
+fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
+    let ctx = common::context();
+    let mut o = options(View::Full, 16);
+    o.anisotropic = true;
+    let r = Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).unwrap();
+    r.render().unwrap();
+    let base = f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
+    let texel = |x: usize, y: usize, z: usize| Vec4::from_slice(&base[4 * (x + 16 * (y + 16 * z))..][..4]);
+    for (d, chain) in r.radiance.aniso.iter().enumerate() {
+        let got = f16s(&gpu::read_image(&ctx, chain, vk::ImageLayout::GENERAL, 0).unwrap());
+        let axis = d / 2;
+        let positive = d % 2 == 0;
+        let mut nonzero = 0;
+        for z in 0..8 {
+            for y in 0..8 {
+                for x in 0..8 {
+                    let mut sum = Vec4::ZERO;
+                    for i in 0..4 {
+                        let mut c = [2 * x, 2 * y, 2 * z];
+                        c[(axis + 1) % 3] += i & 1;
+                        c[(axis + 2) % 3] += i >> 1;
+                        let mut c2 = c;
+                        c2[axis] += 1;
+                        let (near, far) = if positive { (c, c2) } else { (c2, c) };
+                        let (n, f) = (texel(near[0], near[1], near[2]), texel(far[0], far[1], far[2]));
+                        sum += n + (1.0 - n.w) * f;
+                    }
+                    let want = sum / 4.0;
+                    let g = Vec4::from_slice(&got[4 * (x + 8 * (y + 8 * z))..][..4]);
+                    assert!(
+                        (g - want).abs().max_element() <= want.abs().max_element() * 2e-3 + 1e-4,
+                        "direction {d} ({x},{y},{z}): {g} vs {want}"
+                    );
+                    nonzero += (want.w > 0.0) as usize;
+                }
+            }
+        }
+        assert!(nonzero > 20, "direction {d}: the volume is nearly empty");
+    }
+    drop(r);
+    common::assert_clean(&ctx);
+}
+
 /// A 16³ volume: an emissive slab, a grey blob and empty space, with its box-filtered mips, all
 /// rounded to f16 as the GPU stores them.
 fn synthetic_volume() -> MipVolume {

@@ -26,7 +26,12 @@ fn small_triangles_are_dropped_by_sampling_but_not_by_tessellation() {
     println!("tess {t:?}\nmsaa {m:?}\nnone {n:?}");
     assert!(t[0].1 >= 0.95, "tessellation keeps small triangles: {}", t[0].1);
     assert!(n[0].1 < 0.5 && m[0].1 < t[0].1, "sampling drops them: none {} msaa {}", n[0].1, m[0].1);
-    assert!(n[1].1 > n[0].1 + 0.1 && m[1].1 > m[0].1 + 0.3, "larger triangles are kept more: none {} msaa {}", n[1].1, m[1].1);
+    assert!(
+        n[1].1 > n[0].1 + 0.1 && m[1].1 > m[0].1 + 0.3,
+        "larger triangles are kept more: none {} msaa {}",
+        n[1].1,
+        m[1].1
+    );
     common::assert_clean(&ctx);
 }
 

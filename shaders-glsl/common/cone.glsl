@@ -13,8 +13,26 @@ struct ConeParams {
     float resolution;  // N
 };
 
-// Returns accumulated radiance (rgb, premultiplied) and opacity (a).
-vec4 trace_cone(sampler3D volume, vec3 uvw, vec3 normal, vec3 dir, float aperture, ConeParams p) {
+// Anisotropic sample (Crassin et al. 2011): the three directional volumes facing the cone,
+// weighted by the squared direction components. The directional chains start at level 1;
+// between levels 0 and 1 the isotropic level 0 is blended in.
+vec4 sample_aniso(sampler3D iso, sampler3D px, sampler3D nx, sampler3D py, sampler3D ny, sampler3D pz, sampler3D nz,
+                  vec3 pos, vec3 dir, float lod) {
+    float l = max(lod - 1.0, 0.0);
+    vec3 w = dir * dir;
+    // Branches, not ?: selects, so only the three facing volumes are sampled.
+    vec4 a;
+    if (dir.x >= 0.0) a = w.x * textureLod(px, pos, l); else a = w.x * textureLod(nx, pos, l);
+    if (dir.y >= 0.0) a += w.y * textureLod(py, pos, l); else a += w.y * textureLod(ny, pos, l);
+    if (dir.z >= 0.0) a += w.z * textureLod(pz, pos, l); else a += w.z * textureLod(nz, pos, l);
+    if (lod < 1.0) a = mix(textureLod(iso, pos, 0.0), a, lod);
+    return a;
+}
+
+// Returns accumulated radiance (rgb, premultiplied) and opacity (a). With `aniso` the six
+// directional volumes are sampled; otherwise only the isotropic `volume` (the thesis).
+vec4 trace_cone_filtered(sampler3D volume, sampler3D px, sampler3D nx, sampler3D py, sampler3D ny, sampler3D pz,
+                         sampler3D nz, bool aniso, vec3 uvw, vec3 normal, vec3 dir, float aperture, ConeParams p) {
     float scale = 1.0 / p.resolution;
     vec3 start = uvw + p.bias * normal * scale;
     float height = p.start;
@@ -26,13 +44,21 @@ vec4 trace_cone(sampler3D volume, vec3 uvw, vec3 normal, vec3 dir, float apertur
         float lod = log2(max(1.0, 2.0 * radius));
         vec3 pos = start + height * dir * scale;
         if (any(lessThan(pos, vec3(0.0))) || any(greaterThan(pos, vec3(1.0)))) break;
-        vec4 s = textureLod(volume, pos, lod + p.lod_offset);
+        float l = max(lod + p.lod_offset, 0.0);
+        vec4 s;
+        if (aniso) s = sample_aniso(volume, px, nx, py, ny, pz, nz, pos, dir, l);
+        else s = textureLod(volume, pos, l);
         float a = 1.0 - alpha;
         color += s.rgb * a;
         alpha += a * s.a;
         height += max(radius, 0.5);
     }
     return vec4(color, alpha);
+}
+
+// The thesis' isotropic cone trace (Listing 4.1).
+vec4 trace_cone(sampler3D volume, vec3 uvw, vec3 normal, vec3 dir, float aperture, ConeParams p) {
+    return trace_cone_filtered(volume, volume, volume, volume, volume, volume, volume, false, uvw, normal, dir, aperture, p);
 }
 
 // An orthonormal tangent frame around n (Frisvad 2012, revised by Duff et al. 2017).

@@ -3,13 +3,17 @@
 // plus indirect light by voxel cone tracing — five diffuse cones (45 degrees, one along the
 // normal, four tilted 45 degrees, weighted by their cosine) and one specular cone along the
 // reflection (aperture 0.1 pi roughness). Diffuse-cone occlusion gives ambient occlusion.
-// The includer binds `shadow_map` (sampler2DShadow) and `radiance_volume` (sampler3D).
+// The includer binds `shadow_map` (sampler2DShadow), `radiance_volume` (sampler3D) and the six
+// directional volumes `radiance_px` ... `radiance_nz` (sampled when the ANISOTROPIC
+// specialization constant is set; a constant, so the isotropic variant carries no extra work).
 #ifndef VCT_SHADING_GLSL
 #define VCT_SHADING_GLSL
 #include "frame.glsl"
 #include "brdf.glsl"
 #include "light.glsl"
 #include "cone.glsl"
+
+layout(constant_id = 0) const bool ANISOTROPIC = false;
 
 float shadow_factor(vec3 p) {
     vec4 clip = frame.light_view_proj * vec4(p, 1.0);
@@ -50,10 +54,12 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
         float w_side = cos(tilt), w_sum = 1.0 + 4.0 * w_side;
         vec3 dirs[5] = vec3[](n, n * cos(tilt) + t * sin(tilt), n * cos(tilt) - t * sin(tilt),
                               n * cos(tilt) + b * sin(tilt), n * cos(tilt) - b * sin(tilt));
+        const bool aniso = ANISOTROPIC;
         vec3 gathered = vec3(0.0);
         for (int i = 0; i < 5; i++) {
             float w = (i == 0 ? 1.0 : w_side) / w_sum;
-            vec4 c = trace_cone(radiance_volume, uvw, n, normalize(dirs[i]), aperture, p);
+            vec4 c = trace_cone_filtered(radiance_volume, radiance_px, radiance_nx, radiance_py, radiance_ny, radiance_pz,
+                                            radiance_nz, aniso, uvw, n, normalize(dirs[i]), aperture, p);
             gathered += w * c.rgb;
             occlusion += w * c.a;
         }
@@ -63,7 +69,8 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
         if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
             vec3 r = reflect(-v, n);
             float spec_aperture = max(0.1 * PI * roughness, MIN_SPECULAR_APERTURE);
-            vec4 c = trace_cone(radiance_volume, uvw, n, r, spec_aperture, p);
+            vec4 c = trace_cone_filtered(radiance_volume, radiance_px, radiance_nx, radiance_py, radiance_ny, radiance_pz,
+                                            radiance_nz, aniso, uvw, n, r, spec_aperture, p);
             specular = fresnel_schlick(f0, dot(n, v)) * c.rgb;
         }
     }

@@ -30,15 +30,16 @@ void main() {
     vec2 uv = (vec2(texel) + 0.5) / vec2(size);
     vec4 world = frame.light_inv_view_proj * vec4(uv * 2.0 - 1.0, depth, 1.0);
     vec3 p = world.xyz / world.w;
-    // The lit point lies on a surface; its voxel is the occupied one just behind or in front.
+    // The lit point lies on a surface; its voxel is the occupied one on the light's side of it,
+    // else the one just behind (a wall thinner than a voxel must not light its far side).
     vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
     float n = frame.voxel_grid.x;
     float step = 0.25 * frame.voxel_origin.w;
-    ivec3 v = ivec3(floor(world_to_uvw(p + l_dir * step) * n));
+    ivec3 v = ivec3(floor(world_to_uvw(p - l_dir * step) * n));
     if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
     uint a = imageLoad(voxel_albedo, v).r;
     if ((a >> 24) == 0u) {
-        v = ivec3(floor(world_to_uvw(p - l_dir * step) * n));
+        v = ivec3(floor(world_to_uvw(p + l_dir * step) * n));
         if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
         a = imageLoad(voxel_albedo, v).r;
         if ((a >> 24) == 0u) return;

@@ -337,7 +337,9 @@ pub fn draw_regime(dir: &Path, g: &Regime) -> Result<Vec<PathBuf>> {
     ensure_font()?;
     let path = dir.join(format!("stability_{}", g.name));
     let err = |m: String| Error::input(&path, format!("drawing the chart: {m}"));
-    regime_chart(BitMapBackend::new(&path.with_extension("png"), (900, 560)).into_drawing_area(), g).map_err(|e| err(e.to_string()))?;
-    regime_chart(SVGBackend::new(&path.with_extension("svg"), (900, 560)).into_drawing_area(), g).map_err(|e| err(e.to_string()))?;
+    regime_chart(BitMapBackend::new(&path.with_extension("png"), (900, 560)).into_drawing_area(), g)
+        .map_err(|e| err(e.to_string()))?;
+    regime_chart(SVGBackend::new(&path.with_extension("svg"), (900, 560)).into_drawing_area(), g)
+        .map_err(|e| err(e.to_string()))?;
     Ok(vec![path.with_extension("png"), path.with_extension("svg")])
 }

@@ -311,20 +311,46 @@ pub fn summary(r: &Results) -> String {
         r.device, r.driver, r.warmup, r.frames, r.reference_spp
     );
     for reference in &r.references {
-        s.push_str(&format!("- {} reference noise: {:.2}% (mean standard error over mean)\n", reference.scene, 100.0 * reference.relative_noise));
+        s.push_str(&format!(
+            "- {} reference noise: {:.2}% (mean standard error over mean)\n",
+            reference.scene,
+            100.0 * reference.relative_noise
+        ));
     }
-    s.push_str("\n| scene | voxelizer | N | voxelize ms | frame ms (min–max) | recall | precision | IoU | FLIP | RMSE |\n");
+    s.push_str(
+        "\n| scene | voxelizer | N | voxelize ms | frame ms (min–max) | recall | precision | IoU | FLIP | RMSE |\n",
+    );
     s.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
     for x in &r.rows {
         s.push_str(&format!(
             "| {} | {} | {} | {:.2} | {:.1} ({:.1}–{:.1}) | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |\n",
-            x.scene, x.voxelizer, x.resolution, x.voxelize_ms, x.total_ms, x.total_min_ms, x.total_max_ms, x.recall, x.precision, x.iou, x.flip, x.rmse
+            x.scene,
+            x.voxelizer,
+            x.resolution,
+            x.voxelize_ms,
+            x.total_ms,
+            x.total_min_ms,
+            x.total_max_ms,
+            x.recall,
+            x.precision,
+            x.iou,
+            x.flip,
+            x.rmse
         ));
     }
     s.push_str("\nTess/raster (MSAA) voxelization time ratio:\n\n| scene | N | tess ms | raster ms | ratio |\n|---|---|---|---|---|\n");
     for t in r.rows.iter().filter(|x| x.voxelizer == "tess") {
-        if let Some(m) = r.rows.iter().find(|x| x.voxelizer == "raster-msaa" && x.scene == t.scene && x.resolution == t.resolution) {
-            s.push_str(&format!("| {} | {} | {:.2} | {:.2} | {:.1} |\n", t.scene, t.resolution, t.voxelize_ms, m.voxelize_ms, t.voxelize_ms / m.voxelize_ms.max(1e-9)));
+        if let Some(m) =
+            r.rows.iter().find(|x| x.voxelizer == "raster-msaa" && x.scene == t.scene && x.resolution == t.resolution)
+        {
+            s.push_str(&format!(
+                "| {} | {} | {:.2} | {:.2} | {:.1} |\n",
+                t.scene,
+                t.resolution,
+                t.voxelize_ms,
+                m.voxelize_ms,
+                t.voxelize_ms / m.voxelize_ms.max(1e-9)
+            ));
         }
     }
     s.push_str("\nVoxelization cost against triangle count:\n\n| scene | voxelizer | triangles | voxelize ms |\n|---|---|---|---|\n");

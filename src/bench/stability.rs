@@ -2,8 +2,11 @@
 //! 1. tessellation limit — recall against triangle size, with and without subdivision;
 //! 2. raster cracks — recall against viewport scale (fragments sparser than voxels), with and
 //!    without MSAA, and recall against triangle size for sub-voxel triangles;
+//! 3. light leaking — radiance in a dark room behind a wall thinner than a voxel, with the
+//!    thesis' isotropic filtering and with anisotropic voxels (the fix);
 //! 5. self-illumination — indirect light a lone lit plane gives itself, against the cone offset.
-//! (Regimes 3, light leaking through thin walls, and 4, temporal flicker, are not measured yet.)
+//!
+//! Regime 4, temporal flicker, is not measured yet.
 
 use std::sync::Arc;
 
@@ -62,7 +65,10 @@ pub fn tessellation_limit(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
             let scene = Scene::from_triangles(&[(t, 0)], &[Vec3::splat(0.8)]);
             points.push((s as f64, recall(ctx, &scene, tess(subdivide), unit_grid(128))?));
         }
-        series.push(Series { label: format!("tess, subdivision {}", if subdivide { "on (fix)" } else { "off" }), points });
+        series.push(Series {
+            label: format!("tess, subdivision {}", if subdivide { "on (fix)" } else { "off" }),
+            points,
+        });
     }
     Ok(Regime {
         name: "tess_limit".into(),
@@ -109,7 +115,8 @@ pub fn subvoxel_triangles(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
         let mut tris = Vec::new();
         for _ in 0..400 {
             let c = Vec3::new(rng.gen_range(2.0..30.0), rng.gen_range(2.0..30.0), rng.gen_range(2.0..30.0));
-            let mut corner = || c + Vec3::new(rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5) * s;
+            let mut corner =
+                || c + Vec3::new(rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5) * s;
             tris.push(([corner(), corner(), corner()], 0));
         }
         let scene = Scene::from_triangles(&tris, &[Vec3::splat(0.8)]);
@@ -129,11 +136,18 @@ pub fn subvoxel_triangles(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
 
 /// A lone square lit from above, seen from above: any indirect light on it is self-illumination.
 pub fn lone_plane() -> Scene {
-    let q = [Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(-1.0, 0.0, 1.0)];
+    let q =
+        [Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(-1.0, 0.0, 1.0)];
     let mut scene = Scene::from_triangles(&[([q[0], q[2], q[1]], 0), ([q[0], q[3], q[2]], 0)], &[Vec3::splat(0.8)]);
     scene.light = Light::Directional { direction: Vec3::new(0.2, -1.0, 0.1).normalize(), irradiance: Vec3::splat(3.0) };
-    scene.camera =
-        Camera { eye: Vec3::new(0.0, 2.5, 0.01), target: Vec3::ZERO, up: Vec3::Z, fov_y_deg: 30.0, width: 64, height: 64 };
+    scene.camera = Camera {
+        eye: Vec3::new(0.0, 2.5, 0.01),
+        target: Vec3::ZERO,
+        up: Vec3::Z,
+        fov_y_deg: 30.0,
+        width: 64,
+        height: 64,
+    };
     scene
 }
 
@@ -142,7 +156,12 @@ pub fn self_illumination_ratio(ctx: &Arc<Context>, bias: f32, resolution: u32) -
     let mean = |view: View| -> Result<f64> {
         let mut scene = lone_plane();
         scene.settings.gi.bias = bias;
-        let o = RenderOptions { method: VoxelizeMethod::raster(Coverage::Msaa), resolution: Some(resolution), view, ..Default::default() };
+        let o = RenderOptions {
+            method: VoxelizeMethod::raster(Coverage::Msaa),
+            resolution: Some(resolution),
+            view,
+            ..Default::default()
+        };
         let r = Renderer::new(ctx, scene, o)?;
         r.render()?;
         let f = r.read_frame()?;
@@ -156,7 +175,8 @@ pub fn self_illumination_ratio(ctx: &Arc<Context>, bias: f32, resolution: u32) -
 pub fn self_illumination(ctx: &Arc<Context>, biases: &[f32]) -> Result<Regime> {
     let mut series = Vec::new();
     for res in [32, 64] {
-        let points = biases.iter().map(|&b| Ok((b as f64, self_illumination_ratio(ctx, b, res)?))).collect::<Result<_>>()?;
+        let points =
+            biases.iter().map(|&b| Ok((b as f64, self_illumination_ratio(ctx, b, res)?))).collect::<Result<_>>()?;
         series.push(Series { label: format!("{res}³"), points });
     }
     Ok(Regime {
@@ -165,6 +185,72 @@ pub fn self_illumination(ctx: &Arc<Context>, biases: &[f32]) -> Result<Regime> {
         x: "cone offset along the normal (voxels)".into(),
         y: "indirect / direct (truth: 0)".into(),
         log_x: false,
+        series,
+    })
+}
+
+/// Two rooms side by side (x < 0 lit by a spot light, x > 0 dark) divided by a wall of zero
+/// thickness, the camera in the dark room.
+pub fn two_rooms() -> Scene {
+    let c = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    let quad = |a: Vec3, b: Vec3, cc: Vec3, d: Vec3| [([a, b, cc], 0usize), ([a, cc, d], 0usize)];
+    let mut tris = Vec::new();
+    tris.extend(quad(c(-2., 0., -1.), c(2., 0., -1.), c(2., 0., 1.), c(-2., 0., 1.))); // floor
+    tris.extend(quad(c(-2., 2., -1.), c(-2., 2., 1.), c(2., 2., 1.), c(2., 2., -1.))); // ceiling
+    tris.extend(quad(c(-2., 0., -1.), c(-2., 2., -1.), c(2., 2., -1.), c(2., 0., -1.))); // back
+    tris.extend(quad(c(-2., 0., 1.), c(2., 0., 1.), c(2., 2., 1.), c(-2., 2., 1.))); // front
+    tris.extend(quad(c(-2., 0., -1.), c(-2., 0., 1.), c(-2., 2., 1.), c(-2., 2., -1.))); // left
+    tris.extend(quad(c(2., 0., -1.), c(2., 2., -1.), c(2., 2., 1.), c(2., 0., 1.))); // right
+    tris.extend(quad(c(0., 0., -1.), c(0., 2., -1.), c(0., 2., 1.), c(0., 0., 1.))); // divider
+    let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(0.75)]);
+    scene.light = Light::Spot {
+        position: c(-1.0, 1.95, 0.0),
+        direction: Vec3::NEG_Y,
+        intensity: Vec3::splat(20.0),
+        inner_deg: 60.0,
+        outer_deg: 70.0,
+    };
+    scene.camera = Camera {
+        eye: c(1.9, 1.6, 0.9),
+        target: c(0.3, 0.4, -0.6),
+        up: Vec3::Y,
+        fov_y_deg: 70.0,
+        width: 64,
+        height: 64,
+    };
+    scene
+}
+
+/// Mean radiance seen in the dark room (truth: 0, every path to the light is walled off).
+pub fn leak(ctx: &Arc<Context>, anisotropic: bool, resolution: u32) -> Result<f64> {
+    let o = RenderOptions {
+        method: VoxelizeMethod::raster(Coverage::Msaa),
+        resolution: Some(resolution),
+        anisotropic,
+        ..Default::default()
+    };
+    let r = Renderer::new(ctx, two_rooms(), o)?;
+    r.render()?;
+    let f = r.read_frame()?;
+    Ok(f.hdr.chunks_exact(4).map(|p| p[1] as f64).sum::<f64>() / (f.hdr.len() / 4) as f64)
+}
+
+/// Regime 3: light leaking through a thin wall, isotropic against anisotropic filtering.
+pub fn light_leaking(ctx: &Arc<Context>, resolutions: &[u32]) -> Result<Regime> {
+    let mut series = Vec::new();
+    for aniso in [false, true] {
+        let points = resolutions.iter().map(|&n| Ok((n as f64, leak(ctx, aniso, n)?))).collect::<Result<_>>()?;
+        series.push(Series {
+            label: if aniso { "anisotropic voxels (fix)".into() } else { "isotropic (thesis)".into() },
+            points,
+        });
+    }
+    Ok(Regime {
+        name: "light_leaking".into(),
+        title: "3. Light leaking through a wall thinner than a voxel".into(),
+        x: "voxel resolution N".into(),
+        y: "mean radiance in the dark room (truth: 0)".into(),
+        log_x: true,
         series,
     })
 }
@@ -178,7 +264,10 @@ pub fn run(ctx: &Arc<Context>, quick: bool, progress: &dyn Fn(&str)) -> Result<V
     let r2 = raster_cracks(ctx, &pick(&[0.25, 0.5, 0.75, 1.0, 2.0], &[0.5, 1.0]))?;
     progress("2. small triangles");
     let r2b = subvoxel_triangles(ctx, &pick(&[0.1, 0.2, 0.4, 0.7, 1.0, 2.0, 4.0], &[0.2, 2.0]))?;
+    progress("3. light leaking");
+    let r3 =
+        light_leaking(ctx, &pick(&[16.0, 32.0, 64.0, 128.0], &[32.0]).iter().map(|&n| n as u32).collect::<Vec<_>>())?;
     progress("5. self-illumination");
     let r5 = self_illumination(ctx, &pick(&[0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0], &[0.0, 1.5]))?;
-    Ok(vec![r1, r2, r2b, r5])
+    Ok(vec![r1, r2, r2b, r3, r5])
 }

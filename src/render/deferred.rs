@@ -32,12 +32,14 @@ pub struct DeferredShadePass {
 }
 
 impl DeferredShadePass {
+    /// `anisotropic`: cones sample the six directional chains (specialization constant).
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
         shadow: &ShadowPass,
         radiance: &RadianceVolume,
         targets: &Targets,
+        anisotropic: bool,
     ) -> Result<Self> {
         let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::STORAGE;
         let albedo =
@@ -72,18 +74,27 @@ impl DeferredShadePass {
                 Binding::new(2, storage, c),
                 Binding::new(3, storage, c),
                 Binding::new(4, storage, c),
+                Binding::new(5, sampled, c),
+                Binding::new(6, sampled, c),
+                Binding::new(7, sampled, c),
+                Binding::new(8, sampled, c),
+                Binding::new(9, sampled, c),
+                Binding::new(10, sampled, c),
             ],
         )?;
         let shadow_sampler = Sampler::shadow(ctx, "deferred shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
         set.write_images(1, sampled, &[radiance.sampled_info()]);
+        for (i, info) in radiance.aniso_infos().into_iter().enumerate() {
+            set.write_images(5 + i as u32, sampled, &[info]);
+        }
         set.write_storage(2, albedo.view.raw);
         set.write_storage(3, normal.view.raw);
         set.write_storage(4, targets.hdr.view.raw);
         let shade_pipeline = Pipeline::compute(
             ctx,
             "deferred shade",
-            Stage::new(c, shaders::SHADE_DEFERRED_COMP),
+            Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&[anisotropic as u32]),
             &[scene.set.layout, scene.material_sets.layout, set.layout],
             0,
         )?;

@@ -116,6 +116,8 @@ pub struct RenderOptions {
     pub view: View,
     pub gi: bool,
     pub tracing: Tracing,
+    /// Six directional mip chains instead of the thesis' isotropic one.
+    pub anisotropic: bool,
 }
 
 impl Default for RenderOptions {
@@ -126,6 +128,7 @@ impl Default for RenderOptions {
             view: View::Full,
             gi: true,
             tracing: Tracing::default(),
+            anisotropic: false,
         }
     }
 }
@@ -178,9 +181,11 @@ impl Renderer {
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance)?;
         let filter = FilterPass::new(ctx, &radiance)?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
-        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance)?;
+        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, options.anisotropic)?;
         let deferred = match options.tracing {
-            Tracing::Deferred => Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &targets)?),
+            Tracing::Deferred => {
+                Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &targets, options.anisotropic)?)
+            }
             Tracing::Forward => None,
         };
         let volume_view = VolumeViewPass::new(ctx, &scene_gpu, &voxels, &radiance, &targets)?;
@@ -241,7 +246,7 @@ impl Renderer {
             t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
             t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
             t.span(cmd, "inject", || self.inject.record(cmd, scene));
-            t.span(cmd, "filter", || self.filter.record(cmd));
+            t.span(cmd, "filter", || self.filter.record(cmd, self.options.anisotropic));
             if self.options.view.is_volume() {
                 t.span(cmd, "volume view", || self.volume_view.record(cmd, scene, targets));
             } else if let Some(d) = &self.deferred {
@@ -282,9 +287,14 @@ impl Renderer {
         self.scene.camera.height = height;
         self.targets = Targets::new(&ctx, width, height)?;
         self.deferred = match self.options.tracing {
-            Tracing::Deferred => {
-                Some(DeferredShadePass::new(&ctx, &self.scene_gpu, &self.shadow, &self.radiance, &self.targets)?)
-            }
+            Tracing::Deferred => Some(DeferredShadePass::new(
+                &ctx,
+                &self.scene_gpu,
+                &self.shadow,
+                &self.radiance,
+                &self.targets,
+                self.options.anisotropic,
+            )?),
             Tracing::Forward => None,
         };
         self.volume_view = VolumeViewPass::new(&ctx, &self.scene_gpu, &self.voxels, &self.radiance, &self.targets)?;

@@ -14,6 +14,9 @@ pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 pub struct RadianceVolume {
     pub injected: Image,
     pub radiance: Image,
+    /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z): level l of the
+    /// volume is their mip l - 1.
+    pub aniso: Vec<Image>,
     pub sampler: Sampler,
     pub levels: u32,
 }
@@ -38,11 +41,19 @@ impl RadianceVolume {
             "radiance volume",
             ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
         )?;
-        // Start both in GENERAL and zero, so the first temporal blend reads defined history.
+        let aniso = ["+x", "-x", "+y", "-y", "+z", "-z"]
+            .iter()
+            .map(|d| {
+                let desc =
+                    ImageDesc::d3(RADIANCE_FORMAT, (resolution / 2).max(1), storage | vk::ImageUsageFlags::SAMPLED);
+                Image::new(ctx, &format!("radiance {d}"), desc.mips((levels - 1).max(1)))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
             let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
             let clear = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
-            for img in [&injected, &radiance] {
+            for img in [&injected, &radiance].into_iter().chain(&aniso) {
                 gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, none, clear);
                 unsafe {
                     ctx.device.cmd_clear_color_image(
@@ -55,7 +66,13 @@ impl RadianceVolume {
                 };
             }
         })?;
-        Ok(RadianceVolume { injected, radiance, sampler: Sampler::linear_border(ctx, "radiance sampler")?, levels })
+        Ok(RadianceVolume {
+            injected,
+            radiance,
+            aniso,
+            sampler: Sampler::linear_border(ctx, "radiance sampler")?,
+            levels,
+        })
     }
 
     /// Descriptor info for sampling the whole mip chain (GENERAL layout).
@@ -64,6 +81,27 @@ impl RadianceVolume {
             sampler: self.sampler.raw,
             image_view: self.radiance.view.raw,
             image_layout: vk::ImageLayout::GENERAL,
+        }
+    }
+
+    /// Descriptor infos for the six directional chains.
+    pub fn aniso_infos(&self) -> Vec<vk::DescriptorImageInfo> {
+        self.aniso
+            .iter()
+            .map(|a| vk::DescriptorImageInfo {
+                sampler: self.sampler.raw,
+                image_view: a.view.raw,
+                image_layout: vk::ImageLayout::GENERAL,
+            })
+            .collect()
+    }
+
+    /// Writes the isotropic volume at `binding` and the six directional ones after it.
+    pub fn write_to(&self, set: &crate::gpu::DescriptorSet, binding: u32) {
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
+        set.write_images(binding, sampled, &[self.sampled_info()]);
+        for (i, info) in self.aniso_infos().into_iter().enumerate() {
+            set.write_images(binding + 1 + i as u32, sampled, &[info]);
         }
     }
 }

@@ -24,19 +24,30 @@ pub struct ShadePass {
 }
 
 impl ShadePass {
-    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, shadow: &ShadowPass, radiance: &RadianceVolume) -> Result<Self> {
+    /// `anisotropic`: cones sample the six directional chains (specialization constant).
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &SceneGpu,
+        shadow: &ShadowPass,
+        radiance: &RadianceVolume,
+        anisotropic: bool,
+    ) -> Result<Self> {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frag = vk::ShaderStageFlags::FRAGMENT;
-        let set =
-            DescriptorSet::new(ctx, "shade inputs", &[Binding::new(0, sampled, frag), Binding::new(1, sampled, frag)])?;
+        let set = DescriptorSet::new(
+            ctx,
+            "shade inputs",
+            &(0..8).map(|b| Binding::new(b, sampled, frag)).collect::<Vec<_>>(),
+        )?;
         let shadow_sampler = Sampler::shadow(ctx, "shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
-        set.write_images(1, sampled, &[radiance.sampled_info()]);
+        radiance.write_to(&set, 1);
+        let aniso = [anisotropic as u32];
         let mut desc = GraphicsDesc::new(
             "shade",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&[0]),
-                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG).spec(&aniso),
             ],
         );
         desc.set_layouts = vec![scene.set.layout, scene.material_sets.layout, set.layout];

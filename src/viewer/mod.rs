@@ -299,7 +299,7 @@ impl App {
         cam.target = b.center();
         cam.eye = b.center() + glam::Vec3::new(angle.sin() * radius, b.size().y * 0.3, angle.cos() * radius);
         swing_light(&mut r.renderer.scene.light, 0.03, 0.02 * angle.cos());
-        if frame > 0 && frame % 60 == 0 {
+        if frame > 0 && frame.is_multiple_of(60) {
             let mut o = r.renderer.options;
             o.method = match o.method {
                 VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Msaa),
@@ -307,7 +307,7 @@ impl App {
             };
             Self::rebuild(r, o)?;
         }
-        if frame > 0 && frame % 90 == 0 {
+        if frame > 0 && frame.is_multiple_of(90) {
             let mut o = r.renderer.options;
             let n = r.renderer.voxels.grid.resolution;
             o.resolution = Some(if (frame / 90) % 2 == 1 { n * 2 } else { n / 2 });
@@ -467,7 +467,8 @@ pub fn run(options: ViewerOptions) -> Result<ViewerReport> {
     let event_loop = EventLoop::new()
         .map_err(|e| Error::Loader(format!("cannot start the window system (is DISPLAY set?): {e}")))?;
     event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = App { options, running: None, error: None, frames: 0, report: None, soak_baseline: None, soak_end: None };
+    let mut app =
+        App { options, running: None, error: None, frames: 0, report: None, soak_baseline: None, soak_end: None };
     event_loop.run_app(&mut app).map_err(|e| Error::Loader(format!("event loop: {e}")))?;
     app.finish();
     if let Some(e) = app.error {

@@ -34,10 +34,11 @@ impl VoxelGrid {
     }
 
     /// Bytes of GPU memory for the voxel textures: albedo, normal, emission (R32UI each) and
-    /// radiance with its mip chain (RGBA16F, 8/7 of the base level) plus its injection target.
+    /// radiance with its mip chain (RGBA16F, 8/7 of the base level), its injection target, and
+    /// the six directional chains from level 1 (each 1/8 × 8/7 of the base).
     pub fn memory_bytes(&self) -> u64 {
         let n3 = (self.resolution as u64).pow(3);
-        3 * 4 * n3 + 8 * n3 * 8 / 7 + 8 * n3
+        3 * 4 * n3 + 8 * n3 * 8 / 7 + 8 * n3 + 6 * 8 * n3 / 7
     }
 
     pub fn voxel_count(&self) -> usize {

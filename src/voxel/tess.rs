@@ -43,7 +43,8 @@ impl TessVoxelizer {
         } else {
             (MeshBuffers::new(ctx, "tess voxelizer mesh", &scene.mesh)?, 0)
         };
-        let params = params_for(&volume.grid, flag(min_level, config::VOXEL_FLAG_MIN_LEVEL), 1.0, level_scale, max_level);
+        let params =
+            params_for(&volume.grid, flag(min_level, config::VOXEL_FLAG_MIN_LEVEL), 1.0, level_scale, max_level);
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
         let mut desc = GraphicsDesc::new(
             "tess voxelizer",
