@@ -332,7 +332,7 @@ impl App {
         if self.options.soak {
             Self::soak_step(r, self.frames)?;
             // Frames 180, 540, 900, ... run the same voxelizer and resolution.
-            if self.frames >= SOAK_CYCLE && (self.frames - SOAK_CYCLE) % (2 * SOAK_CYCLE) == 0 {
+            if self.frames >= SOAK_CYCLE && (self.frames - SOAK_CYCLE).is_multiple_of(2 * SOAK_CYCLE) {
                 let snapshot = Some((r.ctx.allocated_bytes(), resident_bytes()));
                 if self.soak_baseline.is_none() {
                     self.soak_baseline = snapshot;
