@@ -126,3 +126,18 @@ fn cli_reports_bad_input_without_panicking() {
     assert_eq!(code, 1);
     assert!(err.contains("scene.txt"), "{err}");
 }
+
+#[test]
+fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
+    let d = temp_dir("res");
+    let out = d.join("x.png");
+    for res in ["0", "8", "513", "100000"] {
+        let (code, err) = vct(&["voxelize", "--res", res, "--voxelizer", "raster", "--view", out.to_str().unwrap()]);
+        assert_eq!(code, 1, "--res {res}");
+        assert!(err.contains("res") && err.contains(res), "--res {res}: {err}");
+    }
+    let empty = write(&d, "empty.obj", "# nothing here\nv 0 0 0\n");
+    let (code, err) = vct(&["render", empty.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("no finite geometry"), "{err}");
+}

@@ -192,10 +192,16 @@ impl Renderer {
         let tonemap = TonemapPass::new(ctx, &targets)?;
         let timer = GpuTimer::new(ctx, 16)?;
         let mut notes = voxelizer.notes();
+        if grid.voxel < 1e-3 {
+            notes.push(format!(
+                "voxels are {:.3} mm across: the scene is tiny for {resolution}³ (units are metres) — a lower resolution would do",
+                grid.voxel * 1e3
+            ));
+        }
         let texel = shadow_texel_size(&scene.light, &scene.mesh.bounds, scene.settings.shadow_resolution);
         if texel > 0.7 * grid.voxel {
             notes.push(format!(
-                "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m;                  lit voxels may be missed during injection (raise shadow.resolution)",
+                "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m; lit voxels may be missed during injection (raise shadow.resolution)",
                 grid.voxel
             ));
         }
