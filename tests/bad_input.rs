@@ -141,3 +141,22 @@ fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
     assert_eq!(code, 1);
     assert!(err.contains("no finite geometry"), "{err}");
 }
+
+#[test]
+fn fuzz_corpus_and_mutations_load_without_panicking() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus/scene_input");
+    let mut inputs: Vec<Vec<u8>> = std::fs::read_dir(&dir).unwrap().map(|e| std::fs::read(e.unwrap().path()).unwrap()).collect();
+    assert!(inputs.len() >= 3);
+    // Cheap deterministic mutations: truncations and byte flips of every corpus file.
+    for seed in inputs.clone() {
+        for cut in (0..seed.len()).step_by(37) {
+            inputs.push(seed[..cut].to_vec());
+            let mut flipped = seed.clone();
+            flipped[cut] ^= 0x5a;
+            inputs.push(flipped);
+        }
+    }
+    for input in &inputs {
+        vct::scene::fuzz_scene_input(input);
+    }
+}

@@ -229,6 +229,38 @@ pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
     std::fs::read(path)
 }
 
+/// Loads a scene from files held in memory (`(name, bytes)`, names relative to one folder),
+/// starting at `entry` (a `.toml` or `.obj` name). Used by the fuzz target and its corpus test.
+pub fn load_from_memory(files: &[(&str, &[u8])], entry: &str) -> Result<Scene> {
+    let root = Path::new("<memory>");
+    let read = |p: &Path| -> std::io::Result<Vec<u8>> {
+        let name = p.strip_prefix(root).unwrap_or(p).to_string_lossy().replace('\\', "/");
+        files
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, b)| b.to_vec())
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file in memory"))
+    };
+    Scene::load_with(&root.join(entry), &read)
+}
+
+/// The fuzz target's body: `data` split at "\n----\n" into scene.toml, mesh.obj and mesh.mtl,
+/// loaded both as a scene file and as a bare OBJ. Must return, never panic or hang.
+pub fn fuzz_scene_input(data: &[u8]) {
+    let text = String::from_utf8_lossy(data);
+    let mut parts = text.splitn(3, "\n----\n");
+    let (toml, obj, mtl) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""), parts.next().unwrap_or(""));
+    let files: [(&str, &[u8]); 3] = [("scene.toml", toml.as_bytes()), ("mesh.obj", obj.as_bytes()), ("mesh.mtl", mtl.as_bytes())];
+    for entry in ["scene.toml", "mesh.obj"] {
+        if let Ok(scene) = load_from_memory(&files, entry) {
+            // What loads must be usable: finite bounds or empty, indices in range.
+            let n = scene.mesh.vertices.len() as u32;
+            assert!(scene.mesh.indices.iter().all(|&i| i < n), "index out of range after loading");
+            assert!(scene.mesh.bounds.is_empty() || (scene.mesh.bounds.min.is_finite() && scene.mesh.bounds.max.is_finite()));
+        }
+    }
+}
+
 pub const MAX_IMAGE_SIZE: u32 = 16384;
 
 fn check_finite(path: &Path, field: &str, v: &[f32]) -> Result<()> {
@@ -277,22 +309,27 @@ impl Scene {
 
     /// Loads a scene file (`.toml`) or a bare OBJ (`.obj`).
     pub fn load(path: &Path) -> Result<Scene> {
+        Self::load_with(path, &read_file)
+    }
+
+    /// As [`Scene::load`], reading every file (scene, OBJ, MTL, textures) through `read`.
+    pub fn load_with(path: &Path, read: obj::ReadFn) -> Result<Scene> {
         let ext = path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
         match ext.as_deref() {
-            Some("obj") => Self::from_obj(path),
-            Some("toml") => Self::from_toml(path),
+            Some("obj") => Self::from_obj(path, read),
+            Some("toml") => Self::from_toml(path, read),
             _ => Err(Error::input(path, "expected a scene file (.toml) or a mesh (.obj)")),
         }
     }
 
-    fn from_toml(path: &Path) -> Result<Scene> {
-        let bytes = read_file(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
+    fn from_toml(path: &Path, read: obj::ReadFn) -> Result<Scene> {
+        let bytes = read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
         let text = String::from_utf8(bytes).map_err(|_| Error::input(path, "scene file is not UTF-8 text"))?;
         let file: SceneFile =
             toml::from_str(&text).map_err(|e| Error::input(path, format!("invalid scene file: {e}")))?;
         let mesh_path = path.parent().unwrap_or(Path::new("")).join(&file.mesh);
         let mut warnings = Vec::new();
-        let (mesh, materials, textures) = obj::load_obj(&mesh_path, &read_file, &mut warnings)?;
+        let (mesh, materials, textures) = obj::load_obj(&mesh_path, read, &mut warnings)?;
         let camera = match &file.camera {
             Some(c) => {
                 check_finite(path, "camera.eye", &c.eye)?;
@@ -335,9 +372,9 @@ impl Scene {
         Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light, settings, warnings })
     }
 
-    fn from_obj(path: &Path) -> Result<Scene> {
+    fn from_obj(path: &Path, read: obj::ReadFn) -> Result<Scene> {
         let mut warnings = Vec::new();
-        let (mesh, materials, textures) = obj::load_obj(path, &read_file, &mut warnings)?;
+        let (mesh, materials, textures) = obj::load_obj(path, read, &mut warnings)?;
         let camera = frame_bounds(&mesh.bounds);
         let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
         Ok(Scene {

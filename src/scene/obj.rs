@@ -96,6 +96,33 @@ fn convert_material(
     }
 }
 
+/// Rewrites colour lines tobj cannot take: `Kd r` means `Kd r r r` (the MTL format), and a line
+/// with two numbers, which tobj 4 panics on, is dropped with a warning.
+fn sanitize_mtl(text: &str, path: &Path, warnings: &mut Vec<String>) -> String {
+    let mut out = String::with_capacity(text.len());
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let key = words.next().unwrap_or("");
+        let rest: Vec<&str> = words.collect();
+        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke") && !rest.is_empty() && rest.iter().all(|w| w.parse::<f32>().is_ok()) {
+            match rest.len() {
+                1 => {
+                    out.push_str(&format!("{key} {0} {0} {0}\n", rest[0]));
+                    continue;
+                }
+                2 => {
+                    warnings.push(format!("{}:{}: '{}' needs 1 or 3 values; ignored", path.display(), n + 1, line.trim()));
+                    continue;
+                }
+                _ => {}
+            }
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
+}
+
 /// Loads an OBJ (and its MTL and textures) into one indexed mesh with a draw per material.
 pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result<(Mesh, Vec<Material>, Vec<Texture>)> {
     let bytes = read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
@@ -105,7 +132,10 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
     let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(&bytes), &opts, |mtl| {
         let p = dir.join(mtl);
         match read(&p) {
-            Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(b)),
+            Ok(b) => {
+                let text = sanitize_mtl(&String::from_utf8_lossy(&b), &p, &mut mtl_warnings.borrow_mut());
+                tobj::load_mtl_buf(&mut std::io::Cursor::new(text.into_bytes()))
+            }
             Err(e) => {
                 mtl_warnings.borrow_mut().push(format!("material library {}: {e}", p.display()));
                 Err(tobj::LoadError::OpenFileFailed)
