@@ -110,9 +110,19 @@ struct SceneArgs {
     height: Option<u32>,
     #[command(flatten)]
     method: MethodArgs,
+    /// Voxelize a cube of this edge (world units) around the camera instead of the whole scene.
+    #[arg(long, value_name = "EXTENT")]
+    follow: Option<f32>,
+    /// With --follow: move the volume continuously instead of in whole voxels.
+    #[arg(long)]
+    no_snap: bool,
 }
 
 impl SceneArgs {
+    fn follow(&self) -> Option<vct::render::Follow> {
+        self.follow.map(|extent| vct::render::Follow { extent, snap: !self.no_snap })
+    }
+
     fn load(&self) -> Result<Scene> {
         let mut scene = load_scene(self.scene.as_deref())?;
         scene.set_size(self.width, self.height)?;
@@ -344,6 +354,7 @@ fn render(args: RenderArgs) -> Result<()> {
         gi: !args.no_gi,
         tracing,
         anisotropic: args.filter == FilterArg::Aniso,
+        follow: args.scene.follow(),
     };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
@@ -430,6 +441,7 @@ fn view(args: ViewArgs) -> Result<()> {
         render: RenderOptions {
             method: args.scene.method.method()?,
             resolution: args.scene.method.res,
+            follow: args.scene.follow(),
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,
@@ -639,6 +651,12 @@ fn devices() -> Result<()> {
 }
 
 fn main() {
+    // Exit quietly when stdout is a closed pipe (`vct ... | head`), as Unix tools do, instead
+    // of Rust's default of failing the next print.
+    // SAFETY: restoring the default disposition of SIGPIPE before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let result = match cli.command {

@@ -145,7 +145,8 @@ fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
 #[test]
 fn fuzz_corpus_and_mutations_load_without_panicking() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus/scene_input");
-    let mut inputs: Vec<Vec<u8>> = std::fs::read_dir(&dir).unwrap().map(|e| std::fs::read(e.unwrap().path()).unwrap()).collect();
+    let mut inputs: Vec<Vec<u8>> =
+        std::fs::read_dir(&dir).unwrap().map(|e| std::fs::read(e.unwrap().path()).unwrap()).collect();
     assert!(inputs.len() >= 3);
     // Cheap deterministic mutations: truncations and byte flips of every corpus file.
     for seed in inputs.clone() {

@@ -38,7 +38,11 @@ fn zero_area_and_duplicate_triangles_do_not_change_the_image() {
         let (a, _) = render(clean.clone(), method);
         let (b, _) = render(messy.clone(), method);
         let worst = a.ldr.iter().zip(&b.ldr).map(|(x, y)| (*x as i32 - *y as i32).abs()).max().unwrap();
-        assert!(worst <= 2, "{}: duplicates and degenerate triangles changed the image by up to {worst}", method.label());
+        assert!(
+            worst <= 2,
+            "{}: duplicates and degenerate triangles changed the image by up to {worst}",
+            method.label()
+        );
     }
 }
 
@@ -71,6 +75,10 @@ fn a_million_tiny_triangles_render() {
     for method in [VoxelizeMethod::raster(Coverage::Msaa), VoxelizeMethod::tess()] {
         let (f, _) = render(scene.clone(), method);
         let (n, want) = (lit(&f), lit(&reference));
-        assert!(want > 1000 && n.abs_diff(want) < want / 50, "{}: {n} lit pixels, the plain plane has {want}", method.label());
+        assert!(
+            want > 1000 && n.abs_diff(want) < want / 50,
+            "{}: {n} lit pixels, the plain plane has {want}",
+            method.label()
+        );
     }
 }

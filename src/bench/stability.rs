@@ -6,7 +6,9 @@
 //!    thesis' isotropic filtering and with anisotropic voxels (the fix);
 //! 5. self-illumination — indirect light a lone lit plane gives itself, against the cone offset.
 //!
-//! Regime 4, temporal flicker, is not measured yet.
+//! 4. temporal flicker — mean frame-to-frame change of a still view while the voxel volume
+//!    slides (following a camera) or the light moves, with and without grid snapping and
+//!    temporal filtering.
 
 use std::sync::Arc;
 
@@ -18,7 +20,7 @@ use serde::Serialize;
 use crate::error::Result;
 use crate::gpu::Context;
 use crate::reference::coverage::RefGrid;
-use crate::render::{RenderOptions, Renderer, View};
+use crate::render::{Follow, RenderOptions, Renderer, View};
 use crate::scene::{Camera, Light, Scene};
 use crate::voxel::headless::voxelize_in;
 use crate::voxel::{Coverage, VoxelGrid, VoxelizeMethod, DEFAULT_LEVEL_SCALE};
@@ -255,6 +257,76 @@ pub fn light_leaking(ctx: &Arc<Context>, resolutions: &[u32]) -> Result<Regime> 
     })
 }
 
+fn mean_abs_change(a: &[u8], b: &[u8]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (*x as f64 - *y as f64).abs()).sum::<f64>() / a.len().max(1) as f64
+}
+
+/// Mean |ΔLDR| (0–255) per frame of the indirect light of a still Cornell view (direct light
+/// does not depend on the voxels) over `frames` frames, while a 4 m
+/// volume slides 3 cm a frame along x (`moving_volume`) or the spot light turns 0.5° a frame.
+pub fn flicker(
+    ctx: &Arc<Context>,
+    moving_volume: bool,
+    snap: bool,
+    temporal: f32,
+    frames: u32,
+) -> Result<Vec<(f64, f64)>> {
+    let mut scene = Scene::embedded_default()?;
+    scene.camera.width = 96;
+    scene.camera.height = 96;
+    scene.settings.gi.temporal = temporal;
+    let centre = Vec3::new(0.0, 2.75, 0.0);
+    let o = RenderOptions {
+        method: VoxelizeMethod::raster(Coverage::Msaa),
+        resolution: Some(32),
+        view: View::Indirect,
+        follow: moving_volume.then_some(Follow { extent: 4.0, snap }),
+        ..Default::default()
+    };
+    let mut r = Renderer::new(ctx, scene, o)?;
+    let mut previous: Option<Vec<u8>> = None;
+    let mut points = Vec::new();
+    for f in 0..frames {
+        if moving_volume {
+            r.follow(centre + Vec3::X * 0.03 * f as f32)?;
+        } else {
+            crate::viewer::camera::swing_light(&mut r.scene.light, 0.5f32.to_radians(), 0.0);
+        }
+        r.render()?;
+        let ldr = r.read_frame()?.ldr;
+        if let Some(p) = &previous {
+            points.push((f as f64, mean_abs_change(p, &ldr)));
+        }
+        previous = Some(ldr);
+    }
+    Ok(points)
+}
+
+/// Regime 4: temporal flicker.
+pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
+    let configs = [
+        ("sliding volume", true, false, 1.0),
+        ("sliding volume, snapped", true, true, 1.0),
+        ("sliding volume, temporal 0.2", true, false, 0.2),
+        ("turning light", false, false, 1.0),
+        ("turning light, temporal 0.2", false, false, 0.2),
+    ];
+    let series = configs
+        .iter()
+        .map(|(label, moving, snap, t)| {
+            Ok(Series { label: label.to_string(), points: flicker(ctx, *moving, *snap, *t, frames)? })
+        })
+        .collect::<Result<_>>()?;
+    Ok(Regime {
+        name: "temporal_flicker".into(),
+        title: "4. Temporal flicker of a still view".into(),
+        x: "frame".into(),
+        y: "mean |ΔLDR| from the previous frame (0-255)".into(),
+        log_x: false,
+        series,
+    })
+}
+
 /// All measured regimes (`quick`: fewer points).
 pub fn run(ctx: &Arc<Context>, quick: bool, progress: &dyn Fn(&str)) -> Result<Vec<Regime>> {
     let pick = |full: &[f32], q: &[f32]| if quick { q.to_vec() } else { full.to_vec() };
@@ -267,7 +339,9 @@ pub fn run(ctx: &Arc<Context>, quick: bool, progress: &dyn Fn(&str)) -> Result<V
     progress("3. light leaking");
     let r3 =
         light_leaking(ctx, &pick(&[16.0, 32.0, 64.0, 128.0], &[32.0]).iter().map(|&n| n as u32).collect::<Vec<_>>())?;
+    progress("4. temporal flicker");
+    let r4 = temporal_flicker(ctx, if quick { 6 } else { 24 })?;
     progress("5. self-illumination");
     let r5 = self_illumination(ctx, &pick(&[0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0], &[0.0, 1.5]))?;
-    Ok(vec![r1, r2, r2b, r3, r5])
+    Ok(vec![r1, r2, r2b, r3, r4, r5])
 }

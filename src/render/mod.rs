@@ -107,6 +107,15 @@ pub enum Tracing {
     Deferred,
 }
 
+/// A voxel volume that follows a moving point (the camera) instead of fitting the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Follow {
+    /// Edge length of the volume, world units.
+    pub extent: f32,
+    /// Move the volume in whole voxels.
+    pub snap: bool,
+}
+
 /// What to render with: the voxelizer, the grid resolution, the view, GI on or off.
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
@@ -118,6 +127,8 @@ pub struct RenderOptions {
     pub tracing: Tracing,
     /// Six directional mip chains instead of the thesis' isotropic one.
     pub anisotropic: bool,
+    /// A volume around a moving point; `None`: fitted to the scene.
+    pub follow: Option<Follow>,
 }
 
 impl Default for RenderOptions {
@@ -129,6 +140,7 @@ impl Default for RenderOptions {
             gi: true,
             tracing: Tracing::default(),
             anisotropic: false,
+            follow: None,
         }
     }
 }
@@ -171,7 +183,10 @@ fn shadow_texel_size(light: &Light, bounds: &crate::scene::Aabb, resolution: u32
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, options: RenderOptions) -> Result<Self> {
         let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
-        let grid = VoxelGrid::fit(&scene.mesh.bounds, resolution)?;
+        let grid = match options.follow {
+            Some(f) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
+            None => VoxelGrid::fit(&scene.mesh.bounds, resolution)?,
+        };
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
         let voxels = VoxelVolume::new(ctx, grid)?;
@@ -282,6 +297,16 @@ impl Renderer {
     /// The GPU time of each pass of the last finished frame.
     pub fn timings(&self) -> Result<Vec<Timing>> {
         self.timer.read()
+    }
+
+    /// Centres a following volume on `anchor` (no effect on a fitted volume).
+    pub fn follow(&mut self, anchor: glam::Vec3) -> Result<()> {
+        if let Some(f) = self.options.follow {
+            let grid = VoxelGrid::around(anchor, f.extent, self.voxels.grid.resolution, f.snap)?;
+            self.voxels.grid = grid;
+            self.voxelizer.set_grid(&grid);
+        }
+        Ok(())
     }
 
     /// Renders at a new size: the targets and the passes that write them are rebuilt.

@@ -250,13 +250,17 @@ pub fn fuzz_scene_input(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let mut parts = text.splitn(3, "\n----\n");
     let (toml, obj, mtl) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""), parts.next().unwrap_or(""));
-    let files: [(&str, &[u8]); 3] = [("scene.toml", toml.as_bytes()), ("mesh.obj", obj.as_bytes()), ("mesh.mtl", mtl.as_bytes())];
+    let files: [(&str, &[u8]); 3] =
+        [("scene.toml", toml.as_bytes()), ("mesh.obj", obj.as_bytes()), ("mesh.mtl", mtl.as_bytes())];
     for entry in ["scene.toml", "mesh.obj"] {
         if let Ok(scene) = load_from_memory(&files, entry) {
             // What loads must be usable: finite bounds or empty, indices in range.
             let n = scene.mesh.vertices.len() as u32;
             assert!(scene.mesh.indices.iter().all(|&i| i < n), "index out of range after loading");
-            assert!(scene.mesh.bounds.is_empty() || (scene.mesh.bounds.min.is_finite() && scene.mesh.bounds.max.is_finite()));
+            assert!(
+                scene.mesh.bounds.is_empty()
+                    || (scene.mesh.bounds.min.is_finite() && scene.mesh.bounds.max.is_finite())
+            );
         }
     }
 }

@@ -104,14 +104,20 @@ fn sanitize_mtl(text: &str, path: &Path, warnings: &mut Vec<String>) -> String {
         let mut words = line.split_whitespace();
         let key = words.next().unwrap_or("");
         let rest: Vec<&str> = words.collect();
-        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke") && !rest.is_empty() && rest.iter().all(|w| w.parse::<f32>().is_ok()) {
+        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke") && !rest.is_empty() && rest.iter().all(|w| w.parse::<f32>().is_ok())
+        {
             match rest.len() {
                 1 => {
                     out.push_str(&format!("{key} {0} {0} {0}\n", rest[0]));
                     continue;
                 }
                 2 => {
-                    warnings.push(format!("{}:{}: '{}' needs 1 or 3 values; ignored", path.display(), n + 1, line.trim()));
+                    warnings.push(format!(
+                        "{}:{}: '{}' needs 1 or 3 values; ignored",
+                        path.display(),
+                        n + 1,
+                        line.trim()
+                    ));
                     continue;
                 }
                 _ => {}

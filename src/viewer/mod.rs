@@ -342,6 +342,8 @@ impl App {
             }
         }
         r.camera.update(&mut r.renderer.scene.camera, &mut r.input, dt);
+        let eye = r.renderer.scene.camera.eye;
+        r.renderer.follow(eye)?;
         let (yaw, pitch) = light_step(&r.input, dt);
         if yaw != 0.0 || pitch != 0.0 {
             swing_light(&mut r.renderer.scene.light, yaw, pitch);

@@ -33,6 +33,24 @@ impl VoxelGrid {
         Ok(VoxelGrid { origin, voxel, resolution })
     }
 
+    /// A grid of `extent` world units around `centre` (a volume following the camera). With
+    /// `snap` the origin moves in whole voxels (Freed 2018 §4.1), so the voxelization of static
+    /// geometry does not change as the centre slides.
+    pub fn around(centre: Vec3, extent: f32, resolution: u32, snap: bool) -> Result<Self> {
+        if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&resolution) {
+            return Err(Error::param("res", format!("{resolution} is outside {MIN_RESOLUTION}..={MAX_RESOLUTION}")));
+        }
+        if !(extent.is_finite() && extent > 0.0) || !centre.is_finite() {
+            return Err(Error::param("follow", format!("volume extent {extent} around {centre} is not usable")));
+        }
+        let voxel = extent / resolution as f32;
+        let mut origin = centre - Vec3::splat(extent * 0.5);
+        if snap {
+            origin = (origin / voxel).floor() * voxel;
+        }
+        Ok(VoxelGrid { origin, voxel, resolution })
+    }
+
     /// Bytes of GPU memory for the voxel textures: albedo, normal, emission (R32UI each) and
     /// radiance with its mip chain (RGBA16F, 8/7 of the base level), its injection target, and
     /// the six directional chains from level 1 (each 1/8 × 8/7 of the base).

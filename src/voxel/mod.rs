@@ -103,12 +103,26 @@ pub struct VoxelParams {
     pub tess: [f32; 4],
 }
 
-/// Set 2 of both voxelizers: their parameters and the volume's two storage images.
+/// A voxelizer's parameters and the uniform buffer that holds them.
+pub struct ParamsUbo {
+    params: VoxelParams,
+    buffer: Buffer,
+}
+
+impl ParamsUbo {
+    /// Moves the grid (the volume follows the camera); the voxel size stays.
+    pub fn set_origin(&mut self, grid: &VoxelGrid) {
+        self.params.origin_size = grid.origin.extend(grid.voxel).into();
+        self.buffer.write_pod(&self.params);
+    }
+}
+
+/// Set 2 of both voxelizers: their parameters and the volume's storage images.
 pub(crate) fn voxel_set(
     ctx: &Arc<Context>,
     volume: &VoxelVolume,
     params: &VoxelParams,
-) -> Result<(DescriptorSet, Buffer)> {
+) -> Result<(DescriptorSet, ParamsUbo)> {
     let g = vk::ShaderStageFlags::ALL_GRAPHICS;
     let set = DescriptorSet::new(
         ctx,
@@ -126,7 +140,7 @@ pub(crate) fn voxel_set(
     set.write_storage(1, volume.albedo.view.raw);
     set.write_storage(2, volume.normal.view.raw);
     set.write_storage(3, volume.emission.view.raw);
-    Ok((set, buffer))
+    Ok((set, ParamsUbo { params: *params, buffer }))
 }
 
 pub(crate) fn params_for(
@@ -190,6 +204,14 @@ impl Voxelizer {
             Voxelizer::Raster(r) => r.record(cmd, scene_gpu, volume),
         }
         volume.record_finish(cmd);
+    }
+
+    /// Moves the grid the voxelizer writes (same voxel size and resolution).
+    pub fn set_grid(&mut self, grid: &VoxelGrid) {
+        match self {
+            Voxelizer::Tess(t) => t.params.set_origin(grid),
+            Voxelizer::Raster(r) => r.params.set_origin(grid),
+        }
     }
 
     /// Notes for the user (e.g. how many triangles were subdivided).

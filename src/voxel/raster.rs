@@ -7,17 +7,17 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{flag, params_for, voxel_set, Coverage, VoxelVolume};
+use super::{flag, params_for, voxel_set, Coverage, ParamsUbo, VoxelVolume};
 use crate::config;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Attachments, Buffer, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
+use crate::gpu::{self, shaders, Attachments, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
 use crate::render::scene_gpu::{vertex_layout_untangented, SceneGpu};
 
 pub struct RasterVoxelizer {
     ctx: Arc<Context>,
     pipeline: Pipeline,
     set: DescriptorSet,
-    _params: Buffer,
+    pub(crate) params: ParamsUbo,
     size: u32,
 }
 
@@ -57,7 +57,7 @@ impl RasterVoxelizer {
             if coverage == Coverage::Msaa { vk::SampleCountFlags::TYPE_4 } else { vk::SampleCountFlags::TYPE_1 };
         desc.conservative = coverage == Coverage::Hardware;
         let pipeline = Pipeline::graphics(ctx, &desc)?;
-        Ok(RasterVoxelizer { ctx: ctx.clone(), pipeline, set, _params: params_buffer, size })
+        Ok(RasterVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, size })
     }
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, _volume: &VoxelVolume) {

@@ -8,10 +8,10 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::subdivide::subdivide_for_tessellation;
-use super::{flag, params_for, voxel_set, VoxelVolume};
+use super::{flag, params_for, voxel_set, ParamsUbo, VoxelVolume};
 use crate::config;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Attachments, Buffer, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
+use crate::gpu::{self, shaders, Attachments, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
 use crate::render::scene_gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
 use crate::scene::Scene;
 
@@ -19,7 +19,7 @@ pub struct TessVoxelizer {
     ctx: Arc<Context>,
     pipeline: Pipeline,
     set: DescriptorSet,
-    _params: Buffer,
+    pub(crate) params: ParamsUbo,
     /// The scene mesh with over-large triangles split (or as loaded, without subdivision).
     mesh: MeshBuffers,
     split: usize,
@@ -61,7 +61,7 @@ impl TessVoxelizer {
         desc.patch_control_points = 3;
         desc.rasterizer_discard = true;
         let pipeline = Pipeline::graphics(ctx, &desc)?;
-        Ok(TessVoxelizer { ctx: ctx.clone(), pipeline, set, _params: params_buffer, mesh, split, subdivide })
+        Ok(TessVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, mesh, split, subdivide })
     }
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu) {
