@@ -54,8 +54,8 @@ fn snapping_and_temporal_filtering_calm_a_sliding_volume() {
     let free = mean(vct::bench::stability::flicker(&ctx, true, false, 1.0, 12).unwrap());
     let snapped = mean(vct::bench::stability::flicker(&ctx, true, true, 1.0, 12).unwrap());
     let filtered = mean(vct::bench::stability::flicker(&ctx, true, false, 0.2, 12).unwrap());
-    println!("mean |ΔLDR| per frame: free {free:.3}, snapped {snapped:.3}, temporal 0.2 {filtered:.3}");
-    assert!(free > 0.02, "a sliding unsnapped volume should flicker: {free}");
+    println!("indirect change per frame (%): free {free:.3}, snapped {snapped:.3}, temporal 0.2 {filtered:.3}");
+    assert!(free > 0.5, "a sliding unsnapped volume should flicker: {free}%");
     assert!(snapped < free / 2.0, "snapping should calm it: {snapped} vs {free}");
     assert!(filtered < free, "temporal filtering should calm it: {filtered} vs {free}");
     common::assert_clean(&ctx);

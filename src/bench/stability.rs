@@ -257,12 +257,19 @@ pub fn light_leaking(ctx: &Arc<Context>, resolutions: &[u32]) -> Result<Regime> 
     })
 }
 
-fn mean_abs_change(a: &[u8], b: &[u8]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (*x as f64 - *y as f64).abs()).sum::<f64>() / a.len().max(1) as f64
+/// Mean |a - b| over the mean of b, in percent (linear radiance).
+fn relative_change(a: &[f32], b: &[f32]) -> f64 {
+    let diff: f64 = a.iter().zip(b).map(|(x, y)| (*x as f64 - *y as f64).abs()).sum();
+    let total: f64 = b.iter().map(|y| y.abs() as f64).sum();
+    if total > 0.0 {
+        100.0 * diff / total
+    } else {
+        0.0
+    }
 }
 
-/// Mean |ΔLDR| (0–255) per frame of the indirect light of a still Cornell view (direct light
-/// does not depend on the voxels) over `frames` frames, while a 4 m
+/// Frame-to-frame change (mean |Δ| over the mean, %) of the indirect light of a still Cornell
+/// view (direct light does not depend on the voxels) over `frames` frames, while a 4 m
 /// volume slides 3 cm a frame along x (`moving_volume`) or the spot light turns 0.5° a frame.
 pub fn flicker(
     ctx: &Arc<Context>,
@@ -284,20 +291,20 @@ pub fn flicker(
         ..Default::default()
     };
     let mut r = Renderer::new(ctx, scene, o)?;
-    let mut previous: Option<Vec<u8>> = None;
+    let mut previous: Option<Vec<f32>> = None;
     let mut points = Vec::new();
     for f in 0..frames {
         if moving_volume {
             r.follow(centre + Vec3::X * 0.03 * f as f32)?;
         } else {
-            crate::viewer::camera::swing_light(&mut r.scene.light, 0.5f32.to_radians(), 0.0);
+            crate::viewer::camera::swing_light(&mut r.scene.light, 0.0, 0.5f32.to_radians());
         }
         r.render()?;
-        let ldr = r.read_frame()?.ldr;
+        let hdr: Vec<f32> = r.read_frame()?.hdr.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
         if let Some(p) = &previous {
-            points.push((f as f64, mean_abs_change(p, &ldr)));
+            points.push((f as f64, relative_change(p, &hdr)));
         }
-        previous = Some(ldr);
+        previous = Some(hdr);
     }
     Ok(points)
 }
@@ -311,7 +318,7 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
         ("turning light", false, false, 1.0),
         ("turning light, temporal 0.2", false, false, 0.2),
     ];
-    let series = configs
+    let series: Vec<Series> = configs
         .iter()
         .map(|(label, moving, snap, t)| {
             Ok(Series { label: label.to_string(), points: flicker(ctx, *moving, *snap, *t, frames)? })
@@ -321,7 +328,7 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
         name: "temporal_flicker".into(),
         title: "4. Temporal flicker of a still view".into(),
         x: "frame".into(),
-        y: "mean |ΔLDR| from the previous frame (0-255)".into(),
+        y: "indirect light change from the previous frame (%)".into(),
         log_x: false,
         series,
     })

@@ -101,7 +101,8 @@ pub fn swing_light(light: &mut Light, yaw: f32, pitch: f32) {
         let d = Quat::from_rotation_y(yaw) * d;
         let side = d.cross(Vec3::Y).normalize_or(Vec3::X);
         let turned = Quat::from_axis_angle(side, pitch) * d;
-        if turned.y.abs() > 0.999 {
+        // Never onto a pole (the tilt axis would vanish), but always allowed away from one.
+        if turned.y.abs() > 0.9999 && turned.y.abs() > d.y.abs() {
             d
         } else {
             turned.normalize()

@@ -40,7 +40,7 @@ impl VoxelGrid {
         if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&resolution) {
             return Err(Error::param("res", format!("{resolution} is outside {MIN_RESOLUTION}..={MAX_RESOLUTION}")));
         }
-        if !(extent.is_finite() && extent > 0.0) || !centre.is_finite() {
+        if !(extent.is_finite() && extent > 0.0 && centre.is_finite()) {
             return Err(Error::param("follow", format!("volume extent {extent} around {centre} is not usable")));
         }
         let voxel = extent / resolution as f32;
