@@ -4,6 +4,8 @@
 use std::sync::Arc;
 
 use ash::vk;
+
+use super::scope;
 use gpu_allocator::MemoryLocation;
 
 use super::{image::aspect_of, Buffer, Context, Image};
@@ -173,7 +175,7 @@ pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: 
         base_array_layer: 0,
         layer_count: 1,
     };
-    let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
+    let transfer_w = scope::TRANSFER_WRITE;
     let none = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::NONE);
     let e = src.desc.extent;
     let sub = vk::ImageSubresourceLayers {
@@ -190,8 +192,8 @@ pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: 
             vk::Offset3D::default(),
             vk::Offset3D { x: extent.width as i32, y: extent.height as i32, z: 1 },
         ])];
-    let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
-    let read = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
+    let any = scope::ANY;
+    let read = scope::TRANSFER_READ;
     image_barrier(ctx, cmd, src, vk::ImageLayout::GENERAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, any, read);
     layout_barrier(
         ctx,
@@ -249,9 +251,9 @@ pub fn upload_buffer<T: bytemuck::Pod>(
 pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result<()> {
     let staging =
         Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, rgba8)?;
-    let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
-    let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
-    let transfer_r = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
+    let none = scope::NONE;
+    let transfer_w = scope::TRANSFER_WRITE;
+    let transfer_r = scope::TRANSFER_READ;
     let shader_r = (vk::PipelineStageFlags2::FRAGMENT_SHADER, vk::AccessFlags2::SHADER_SAMPLED_READ);
     let levels = image.desc.mip_levels;
     ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
@@ -343,8 +345,8 @@ pub fn upload_levels(
     let all: Vec<u8> = levels.concat();
     let staging =
         Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, &all)?;
-    let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
-    let transfer_w = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE);
+    let none = scope::NONE;
+    let transfer_w = scope::TRANSFER_WRITE;
     let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ);
     ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
         image_barrier(
@@ -396,8 +398,8 @@ pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mi
         vk::BufferUsageFlags::TRANSFER_DST,
         MemoryLocation::GpuToCpu,
     )?;
-    let all = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_WRITE | vk::AccessFlags2::MEMORY_READ);
-    let transfer_r = (vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_READ);
+    let all = scope::ANY;
+    let transfer_r = scope::TRANSFER_READ;
     ctx.submit_and_wait(&format!("read back {}", image.name), |cmd| unsafe {
         image_barrier_mips(
             ctx,

@@ -8,6 +8,7 @@ pub mod descriptor;
 pub mod features;
 pub mod image;
 pub mod pipeline;
+pub mod scope;
 pub mod swapchain;
 pub mod timer;
 

@@ -14,7 +14,7 @@ use super::Targets;
 use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{
-    self, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage,
+    self, scope, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage,
 };
 
 const ALBEDO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
@@ -112,12 +112,9 @@ impl DeferredShadePass {
     /// Depth and G-buffer in one geometry pass (it replaces the depth prepass).
     pub fn record_gbuffer(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let depth_rw = (
-            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
-            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
-        );
-        let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
-        let compute_r = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_READ);
+        let depth_rw = scope::DEPTH_RW;
+        let color_w = scope::COLOR_WRITE;
+        let compute_r = scope::COMPUTE_READ;
         gpu::image_barrier(
             ctx,
             cmd,
@@ -176,10 +173,7 @@ impl DeferredShadePass {
     /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL).
     pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let rw = (
-            vk::PipelineStageFlags2::COMPUTE_SHADER,
-            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
-        );
+        let rw = scope::COMPUTE_RW;
         gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
         self.shade_pipeline.bind(cmd, &[scene.set.raw]);
         self.shade_pipeline.bind_set(cmd, 2, self.set.raw);

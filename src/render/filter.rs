@@ -6,11 +6,10 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::inject::compute_to_compute;
 use super::radiance::RadianceVolume;
 use crate::config::WORKGROUP_3D;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
 
 pub struct FilterPass {
     ctx: Arc<Context>,
@@ -87,7 +86,7 @@ impl FilterPass {
 
     /// Builds the isotropic chain and, when `anisotropic`, the six directional chains.
     pub fn record(&self, cmd: vk::CommandBuffer, anisotropic: bool) {
-        let [w, r] = compute_to_compute();
+        let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         for level in 1..self.levels {
             self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
             let n = (self.resolution >> level).max(1);

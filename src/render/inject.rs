@@ -12,7 +12,7 @@ use super::scene_gpu::SceneGpu;
 use super::shadow::ShadowPass;
 use crate::config::{WORKGROUP_2D, WORKGROUP_3D};
 use crate::error::Result;
-use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
+use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
 use crate::voxel::VoxelVolume;
 
 pub struct InjectPass {
@@ -26,17 +26,6 @@ pub struct InjectPass {
     _depth_sampler: Sampler,
     resolution: u32,
     shadow_resolution: u32,
-}
-
-/// Compute writes followed by compute reads.
-pub fn compute_to_compute() -> [(vk::PipelineStageFlags2, vk::AccessFlags2); 2] {
-    [
-        (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE),
-        (
-            vk::PipelineStageFlags2::COMPUTE_SHADER,
-            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
-        ),
-    ]
 }
 
 impl InjectPass {
@@ -118,7 +107,7 @@ impl InjectPass {
         let ctx = &self.ctx;
         let n = self.resolution;
         let cube = [WORKGROUP_3D; 3];
-        let [w, r] = compute_to_compute();
+        let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         self.resolve.bind(cmd, &[self.resolve_set.raw]);
         gpu::dispatch(ctx, cmd, [n, n, n], cube);
         gpu::memory_barrier(ctx, cmd, w, r);

@@ -8,7 +8,7 @@ use ash::vk;
 use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::Targets;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Attachments, Context, GraphicsDesc, Pipeline, Stage};
+use crate::gpu::{self, scope, shaders, Attachments, Context, GraphicsDesc, Pipeline, Stage};
 
 pub struct DepthPrepass {
     ctx: Arc<Context>,
@@ -33,10 +33,7 @@ impl DepthPrepass {
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let depth_rw = (
-            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
-            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
-        );
+        let depth_rw = scope::DEPTH_RW;
         gpu::image_barrier(
             ctx,
             cmd,

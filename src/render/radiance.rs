@@ -7,7 +7,7 @@ use std::sync::Arc;
 use ash::vk;
 
 use crate::error::{Error, Result};
-use crate::gpu::{self, Context, Image, ImageDesc, Sampler};
+use crate::gpu::{self, scope, Context, Image, ImageDesc, Sampler};
 
 pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 
@@ -51,8 +51,8 @@ impl RadianceVolume {
             .collect::<Result<Vec<_>>>()?;
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
-            let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
-            let clear = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
+            let none = scope::NONE;
+            let clear = scope::CLEAR_WRITE;
             for img in [&injected, &radiance].into_iter().chain(&aniso) {
                 gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, none, clear);
                 unsafe {

@@ -14,7 +14,9 @@ use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::shadow::ShadowPass;
 use super::Targets;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Pipeline, Sampler, Stage};
+use crate::gpu::{
+    self, scope, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Pipeline, Sampler, Stage,
+};
 
 pub struct ShadePass {
     ctx: Arc<Context>,
@@ -65,11 +67,8 @@ impl ShadePass {
     /// Shades into `targets.hdr`, leaving it in GENERAL for the compute passes that follow.
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
-        let compute_rw = (
-            vk::PipelineStageFlags2::COMPUTE_SHADER,
-            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
-        );
+        let color_w = scope::COLOR_WRITE;
+        let compute_rw = scope::COMPUTE_RW;
         let depth_w = (
             vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
             vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE,

@@ -7,7 +7,7 @@ use ash::vk;
 
 use super::scene_gpu::{vertex_layout, SceneGpu};
 use crate::error::Result;
-use crate::gpu::{self, shaders, Attachments, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage};
+use crate::gpu::{self, scope, shaders, Attachments, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage};
 
 pub const SHADOW_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 
@@ -40,10 +40,7 @@ impl ShadowPass {
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu) {
         let ctx = &self.ctx;
         let e = self.map.desc.extent;
-        let depth_w = (
-            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
-            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
-        );
+        let depth_w = scope::DEPTH_RW;
         let sampled = (
             vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER,
             vk::AccessFlags2::SHADER_SAMPLED_READ,

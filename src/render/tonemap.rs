@@ -8,7 +8,7 @@ use ash::vk;
 use super::Targets;
 use crate::config::WORKGROUP_2D;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
 
 pub struct TonemapPass {
     ctx: Arc<Context>,
@@ -40,7 +40,7 @@ impl TonemapPass {
             vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER,
             vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE,
         );
-        let w = (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE);
+        let w = scope::COMPUTE_WRITE;
         gpu::image_barrier(ctx, cmd, &targets.ldr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, w);
         self.pipeline.bind(cmd, &[self.set.raw]);
         self.pipeline.push(cmd, &(raw as u32));

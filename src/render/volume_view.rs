@@ -11,7 +11,7 @@ use super::scene_gpu::SceneGpu;
 use super::Targets;
 use crate::config::WORKGROUP_2D;
 use crate::error::Result;
-use crate::gpu::{self, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
 use crate::voxel::VoxelVolume;
 
 pub struct VolumeViewPass {
@@ -53,10 +53,7 @@ impl VolumeViewPass {
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let rw = (
-            vk::PipelineStageFlags2::COMPUTE_SHADER,
-            vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
-        );
+        let rw = scope::COMPUTE_RW;
         gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
         self.pipeline.bind(cmd, &[scene.set.raw, self.set.raw]);
         gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);

@@ -9,7 +9,7 @@ use glam::{Mat4, Vec3, Vec4};
 use super::{frame::depth_range, FrameImages};
 use crate::error::Result;
 use crate::gpu::{
-    self, shaders, Attachments, Buffer, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage, VertexLayout,
+    self, scope, shaders, Attachments, Buffer, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage, VertexLayout,
 };
 use crate::scene::Scene;
 use crate::voxel::headless::VoxelRun;
@@ -86,12 +86,9 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
         origin_size: g.origin.extend(g.voxel),
         light_dir: light.normalize().extend(0.0),
     };
-    let none = (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE);
-    let color_w = (vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE);
-    let depth_rw = (
-        vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
-        vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ,
-    );
+    let none = scope::NONE;
+    let color_w = scope::COLOR_WRITE;
+    let depth_rw = scope::DEPTH_RW;
     ctx.submit_and_wait("voxel view", |cmd| {
         gpu::image_barrier(
             ctx,

@@ -8,7 +8,7 @@ use ash::vk;
 
 use super::VoxelGrid;
 use crate::error::{Error, Result};
-use crate::gpu::{self, Context, Image, ImageDesc};
+use crate::gpu::{self, scope, Context, Image, ImageDesc};
 
 pub const VOXEL_FORMAT: vk::Format = vk::Format::R32_UINT;
 
@@ -68,9 +68,8 @@ impl VoxelVolume {
     /// Clears both textures to zero (empty) and makes them ready for the voxelizers' atomics.
     pub fn record_clear(&self, cmd: vk::CommandBuffer) {
         let ctx = &self.ctx;
-        let any =
-            (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE);
-        let clear_w = (vk::PipelineStageFlags2::CLEAR, vk::AccessFlags2::TRANSFER_WRITE);
+        let any = scope::ANY;
+        let clear_w = scope::CLEAR_WRITE;
         for img in [&self.albedo, &self.normal, &self.emission] {
             gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, any, clear_w);
             unsafe {
