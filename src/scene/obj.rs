@@ -97,21 +97,20 @@ fn convert_material(
 }
 
 /// Rewrites colour lines tobj cannot take: `Kd r` means `Kd r r r` (the MTL format), and a line
-/// with two numbers, which tobj 4 panics on, is dropped with a warning.
+/// with no or two numbers, which tobj 4 panics on, is dropped with a warning.
 fn sanitize_mtl(text: &str, path: &Path, warnings: &mut Vec<String>) -> String {
     let mut out = String::with_capacity(text.len());
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let key = words.next().unwrap_or("");
         let rest: Vec<&str> = words.collect();
-        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke") && !rest.is_empty() && rest.iter().all(|w| w.parse::<f32>().is_ok())
-        {
+        if matches!(key, "Ka" | "Kd" | "Ks" | "Ke") && rest.iter().all(|w| w.parse::<f32>().is_ok()) {
             match rest.len() {
                 1 => {
                     out.push_str(&format!("{key} {0} {0} {0}\n", rest[0]));
                     continue;
                 }
-                2 => {
+                0 | 2 => {
                     warnings.push(format!(
                         "{}:{}: '{}' needs 1 or 3 values; ignored",
                         path.display(),
