@@ -60,3 +60,16 @@ fn snapping_and_temporal_filtering_calm_a_sliding_volume() {
     assert!(filtered < free, "temporal filtering should calm it: {filtered} vs {free}");
     common::assert_clean(&ctx);
 }
+
+#[test]
+fn a_voxel_on_each_side_of_a_thin_wall_cuts_the_leak() {
+    let ctx = common::context();
+    let thesis = vct::bench::stability::leak(&ctx, false, false, 16).unwrap();
+    let fixed = vct::bench::stability::leak(&ctx, true, false, 16).unwrap();
+    println!(
+        "mean radiance in the dark room (truth 0), 16³: one voxel per fragment {thesis:.4}, both sides {fixed:.4}"
+    );
+    assert!(thesis > 0.05, "the thin wall should leak with the thesis' voxelization: {thesis}");
+    assert!(fixed < thesis / 3.0, "a voxel on each side should cut the leak: {fixed} vs {thesis}");
+    common::assert_clean(&ctx);
+}

@@ -35,8 +35,11 @@ void main() {
     // The plane's depth over the whole voxel column cell (dominant axis: slopes are <= 1).
     float reach = 0.5 * (abs(in_depth.z) + abs(in_depth.w));
     float zc = z + dot(in_depth.zw, xy + 0.5 - gl_FragCoord.xy / scale);
-    int first = int(floor(max(zc - reach, in_depth.x)));
-    int last = min(int(floor(min(zc + reach, in_depth.y))), first + 3);
+    // Widened by a hair so a face lying exactly on a layer boundary writes both layers it
+    // touches (the triangle/box test below keeps only voxels it really meets): a wall thinner
+    // than a voxel then has a voxel on each side, and light injected on one side stays there.
+    int first = int(floor(max(zc - reach, in_depth.x) - 1e-4));
+    int last = min(int(floor(min(zc + reach, in_depth.y) + 1e-4)), first + 3);
     for (int layer = first; layer <= last; layer++) {
         vec3 c = vec3(xy, float(layer)) + 0.5;
         if (triangle_box_overlap(in_tri[0] - c, in_tri[1] - c, in_tri[2] - c, vec3(0.5))) {
