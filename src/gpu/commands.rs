@@ -87,6 +87,21 @@ pub fn image_barrier(
     image_barrier_mips(ctx, cmd, image, 0..image.desc.mip_levels, old, new, src, dst);
 }
 
+/// Discards an image's contents, zeroes every mip and leaves it in GENERAL, after the work in
+/// `after` (the caller makes the clear visible to whatever comes next).
+pub fn clear_to_general(ctx: &Context, cmd: vk::CommandBuffer, image: &Image, after: scope::Scope) {
+    image_barrier(ctx, cmd, image, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, after, scope::CLEAR_WRITE);
+    unsafe {
+        ctx.device.cmd_clear_color_image(
+            cmd,
+            image.raw,
+            vk::ImageLayout::GENERAL,
+            &vk::ClearColorValue::default(),
+            &[image.range()],
+        )
+    };
+}
+
 /// Number of workgroups covering `threads` with groups of `local` threads per axis.
 pub fn group_count(threads: [u32; 3], local: [u32; 3]) -> [u32; 3] {
     [threads[0].div_ceil(local[0]), threads[1].div_ceil(local[1]), threads[2].div_ceil(local[2])]

@@ -51,19 +51,8 @@ impl RadianceVolume {
             .collect::<Result<Vec<_>>>()?;
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
-            let none = scope::NONE;
-            let clear = scope::CLEAR_WRITE;
             for img in [&injected, &radiance].into_iter().chain(&aniso) {
-                gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, none, clear);
-                unsafe {
-                    ctx.device.cmd_clear_color_image(
-                        cmd,
-                        img.raw,
-                        vk::ImageLayout::GENERAL,
-                        &vk::ClearColorValue::default(),
-                        &[img.range()],
-                    )
-                };
+                gpu::clear_to_general(ctx, cmd, img, scope::NONE);
             }
         })?;
         Ok(RadianceVolume {

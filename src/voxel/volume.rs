@@ -68,21 +68,10 @@ impl VoxelVolume {
     /// Clears both textures to zero (empty) and makes them ready for the voxelizers' atomics.
     pub fn record_clear(&self, cmd: vk::CommandBuffer) {
         let ctx = &self.ctx;
-        let any = scope::ANY;
-        let clear_w = scope::CLEAR_WRITE;
         for img in [&self.albedo, &self.normal, &self.emission] {
-            gpu::image_barrier(ctx, cmd, img, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, any, clear_w);
-            unsafe {
-                ctx.device.cmd_clear_color_image(
-                    cmd,
-                    img.raw,
-                    vk::ImageLayout::GENERAL,
-                    &vk::ClearColorValue { uint32: [0; 4] },
-                    &[img.range()],
-                )
-            };
+            gpu::clear_to_general(ctx, cmd, img, scope::ANY);
         }
-        gpu::memory_barrier(ctx, cmd, clear_w, voxel_write_scope());
+        gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, voxel_write_scope());
     }
 
     /// Makes the voxelizers' writes visible to the compute and transfer work that follows.
