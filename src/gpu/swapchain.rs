@@ -163,12 +163,11 @@ impl Swapchain {
             if old != vk::SwapchainKHR::null() {
                 self.loader.destroy_swapchain(old, None);
             }
-            for s in self.render_finished.drain(..) {
-                ctx.device.destroy_semaphore(s, None);
-            }
         }
         self.images = unsafe { self.loader.get_swapchain_images(self.raw) }.vk("vkGetSwapchainImagesKHR")?;
-        for _ in &self.images {
+        // The render-finished semaphores are kept across recreations: the presentation engine
+        // may still hold the last one, and a fence does not say when it lets go.
+        while self.render_finished.len() < self.images.len() {
             let s = unsafe { ctx.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
                 .vk("vkCreateSemaphore")?;
             self.render_finished.push(s);
