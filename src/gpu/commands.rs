@@ -190,7 +190,6 @@ pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: 
         base_array_layer: 0,
         layer_count: 1,
     };
-    let transfer_w = scope::TRANSFER_WRITE;
     let none = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::NONE);
     let e = src.desc.extent;
     let sub = vk::ImageSubresourceLayers {
@@ -207,9 +206,15 @@ pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: 
             vk::Offset3D::default(),
             vk::Offset3D { x: extent.width as i32, y: extent.height as i32, z: 1 },
         ])];
-    let any = scope::ANY;
-    let read = scope::TRANSFER_READ;
-    image_barrier(ctx, cmd, src, vk::ImageLayout::GENERAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, any, read);
+    image_barrier(
+        ctx,
+        cmd,
+        src,
+        vk::ImageLayout::GENERAL,
+        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        scope::ANY,
+        scope::TRANSFER_READ,
+    );
     layout_barrier(
         ctx,
         cmd,
@@ -218,7 +223,7 @@ pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: 
         vk::ImageLayout::UNDEFINED,
         vk::ImageLayout::TRANSFER_DST_OPTIMAL,
         none,
-        transfer_w,
+        scope::TRANSFER_WRITE,
     );
     unsafe {
         ctx.device.cmd_blit_image(
@@ -238,10 +243,18 @@ pub fn blit_to_present(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, dst: 
         range,
         vk::ImageLayout::TRANSFER_DST_OPTIMAL,
         vk::ImageLayout::PRESENT_SRC_KHR,
-        transfer_w,
+        scope::TRANSFER_WRITE,
         none,
     );
-    image_barrier(ctx, cmd, src, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::ImageLayout::GENERAL, read, any);
+    image_barrier(
+        ctx,
+        cmd,
+        src,
+        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        vk::ImageLayout::GENERAL,
+        scope::TRANSFER_READ,
+        scope::ANY,
+    );
 }
 
 /// A device-local buffer filled with `data` through a staging copy.
@@ -266,9 +279,6 @@ pub fn upload_buffer<T: bytemuck::Pod>(
 pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result<()> {
     let staging =
         Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, rgba8)?;
-    let none = scope::NONE;
-    let transfer_w = scope::TRANSFER_WRITE;
-    let transfer_r = scope::TRANSFER_READ;
     let shader_r = (vk::PipelineStageFlags2::FRAGMENT_SHADER, vk::AccessFlags2::SHADER_SAMPLED_READ);
     let levels = image.desc.mip_levels;
     ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
@@ -279,8 +289,8 @@ pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result
             image,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            none,
-            transfer_w,
+            scope::NONE,
+            scope::TRANSFER_WRITE,
         );
         let region = [vk::BufferImageCopy::default()
             .image_subresource(vk::ImageSubresourceLayers {
@@ -299,8 +309,8 @@ pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result
                 level - 1..level,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                transfer_w,
-                transfer_r,
+                scope::TRANSFER_WRITE,
+                scope::TRANSFER_READ,
             );
             let (s, t) = (image.extent_at(level - 1), image.extent_at(level));
             let sub = |m| vk::ImageSubresourceLayers {
@@ -332,7 +342,7 @@ pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result
                 0..levels - 1,
                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
                 vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                transfer_r,
+                scope::TRANSFER_READ,
                 shader_r,
             );
         }
@@ -343,7 +353,7 @@ pub fn upload_texture(ctx: &Arc<Context>, image: &Image, rgba8: &[u8]) -> Result
             levels - 1..levels,
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
             vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-            transfer_w,
+            scope::TRANSFER_WRITE,
             shader_r,
         );
     })
@@ -360,8 +370,6 @@ pub fn upload_levels(
     let all: Vec<u8> = levels.concat();
     let staging =
         Buffer::from_slice(ctx, &format!("{} staging", image.name), vk::BufferUsageFlags::TRANSFER_SRC, &all)?;
-    let none = scope::NONE;
-    let transfer_w = scope::TRANSFER_WRITE;
     let any = (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_READ);
     ctx.submit_and_wait(&format!("upload {}", image.name), |cmd| unsafe {
         image_barrier(
@@ -370,8 +378,8 @@ pub fn upload_levels(
             image,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            none,
-            transfer_w,
+            scope::NONE,
+            scope::TRANSFER_WRITE,
         );
         let mut offset = 0u64;
         let regions: Vec<_> = levels
@@ -398,7 +406,7 @@ pub fn upload_levels(
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
             &regions,
         );
-        image_barrier(ctx, cmd, image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, final_layout, transfer_w, any);
+        image_barrier(ctx, cmd, image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, final_layout, scope::TRANSFER_WRITE, any);
     })
 }
 
@@ -413,8 +421,6 @@ pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mi
         vk::BufferUsageFlags::TRANSFER_DST,
         MemoryLocation::GpuToCpu,
     )?;
-    let all = scope::ANY;
-    let transfer_r = scope::TRANSFER_READ;
     ctx.submit_and_wait(&format!("read back {}", image.name), |cmd| unsafe {
         image_barrier_mips(
             ctx,
@@ -423,8 +429,8 @@ pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mi
             mip..mip + 1,
             layout,
             vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-            all,
-            transfer_r,
+            scope::ANY,
+            scope::TRANSFER_READ,
         );
         let region = [vk::BufferImageCopy::default()
             .image_subresource(vk::ImageSubresourceLayers {
@@ -448,8 +454,8 @@ pub fn read_image(ctx: &Arc<Context>, image: &Image, layout: vk::ImageLayout, mi
             mip..mip + 1,
             vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
             layout,
-            transfer_r,
-            all,
+            scope::TRANSFER_READ,
+            scope::ANY,
         );
         let host = [vk::MemoryBarrier2::default()
             .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)

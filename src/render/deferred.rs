@@ -112,17 +112,14 @@ impl DeferredShadePass {
     /// Depth and G-buffer in one geometry pass (it replaces the depth prepass).
     pub fn record_gbuffer(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let depth_rw = scope::DEPTH_RW;
-        let color_w = scope::COLOR_WRITE;
-        let compute_r = scope::COMPUTE_READ;
         gpu::image_barrier(
             ctx,
             cmd,
             &targets.depth,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            compute_r,
-            depth_rw,
+            scope::COMPUTE_READ,
+            scope::DEPTH_RW,
         );
         for img in [&self.albedo, &self.normal] {
             gpu::image_barrier(
@@ -131,8 +128,8 @@ impl DeferredShadePass {
                 img,
                 vk::ImageLayout::UNDEFINED,
                 vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                compute_r,
-                color_w,
+                scope::COMPUTE_READ,
+                scope::COLOR_WRITE,
             );
         }
         let color: Vec<_> = [&self.albedo, &self.normal]
@@ -164,8 +161,8 @@ impl DeferredShadePass {
                 img,
                 vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                 vk::ImageLayout::GENERAL,
-                color_w,
-                compute_r,
+                scope::COLOR_WRITE,
+                scope::COMPUTE_READ,
             );
         }
     }
@@ -173,11 +170,18 @@ impl DeferredShadePass {
     /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL).
     pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let rw = scope::COMPUTE_RW;
-        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.hdr,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::GENERAL,
+            scope::COMPUTE_RW,
+            scope::COMPUTE_RW,
+        );
         self.shade_pipeline.bind(cmd, &[scene.set.raw]);
         self.shade_pipeline.bind_set(cmd, 2, self.set.raw);
         gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
-        gpu::memory_barrier(ctx, cmd, rw, rw);
+        gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
     }
 }

@@ -33,15 +33,14 @@ impl DepthPrepass {
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let depth_rw = scope::DEPTH_RW;
         gpu::image_barrier(
             ctx,
             cmd,
             &targets.depth,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            depth_rw,
-            depth_rw,
+            scope::DEPTH_RW,
+            scope::DEPTH_RW,
         );
         let att = Attachments {
             color: None,

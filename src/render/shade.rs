@@ -67,8 +67,6 @@ impl ShadePass {
     /// Shades into `targets.hdr`, leaving it in GENERAL for the compute passes that follow.
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let color_w = scope::COLOR_WRITE;
-        let compute_rw = scope::COMPUTE_RW;
         let depth_w = (
             vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS,
             vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE,
@@ -84,8 +82,8 @@ impl ShadePass {
             &targets.hdr,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-            compute_rw,
-            color_w,
+            scope::COMPUTE_RW,
+            scope::COLOR_WRITE,
         );
         let att = Attachments {
             color: Some((&targets.hdr, vk::AttachmentLoadOp::CLEAR, [0.0, 0.0, 0.0, 0.0])),
@@ -104,8 +102,8 @@ impl ShadePass {
             &targets.hdr,
             vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
             vk::ImageLayout::GENERAL,
-            color_w,
-            compute_rw,
+            scope::COLOR_WRITE,
+            scope::COMPUTE_RW,
         );
     }
 }

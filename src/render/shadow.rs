@@ -40,7 +40,6 @@ impl ShadowPass {
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu) {
         let ctx = &self.ctx;
         let e = self.map.desc.extent;
-        let depth_w = scope::DEPTH_RW;
         let sampled = (
             vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER,
             vk::AccessFlags2::SHADER_SAMPLED_READ,
@@ -52,7 +51,7 @@ impl ShadowPass {
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
             sampled,
-            depth_w,
+            scope::DEPTH_RW,
         );
         let att = Attachments {
             color: None,
@@ -70,7 +69,7 @@ impl ShadowPass {
             &self.map,
             vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
             vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-            depth_w,
+            scope::DEPTH_RW,
             sampled,
         );
     }

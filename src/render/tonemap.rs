@@ -40,11 +40,18 @@ impl TonemapPass {
             vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::ALL_TRANSFER,
             vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE,
         );
-        let w = scope::COMPUTE_WRITE;
-        gpu::image_barrier(ctx, cmd, &targets.ldr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, w);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.ldr,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::GENERAL,
+            rw,
+            scope::COMPUTE_WRITE,
+        );
         self.pipeline.bind(cmd, &[self.set.raw]);
         self.pipeline.push(cmd, &(raw as u32));
         gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
-        gpu::memory_barrier(ctx, cmd, w, rw);
+        gpu::memory_barrier(ctx, cmd, scope::COMPUTE_WRITE, rw);
     }
 }

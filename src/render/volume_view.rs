@@ -53,10 +53,17 @@ impl VolumeViewPass {
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        let rw = scope::COMPUTE_RW;
-        gpu::image_barrier(ctx, cmd, &targets.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        gpu::image_barrier(
+            ctx,
+            cmd,
+            &targets.hdr,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::GENERAL,
+            scope::COMPUTE_RW,
+            scope::COMPUTE_RW,
+        );
         self.pipeline.bind(cmd, &[scene.set.raw, self.set.raw]);
         gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
-        gpu::memory_barrier(ctx, cmd, rw, rw);
+        gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
     }
 }

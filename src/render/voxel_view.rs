@@ -86,9 +86,6 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
         origin_size: g.origin.extend(g.voxel),
         light_dir: light.normalize().extend(0.0),
     };
-    let none = scope::NONE;
-    let color_w = scope::COLOR_WRITE;
-    let depth_rw = scope::DEPTH_RW;
     ctx.submit_and_wait("voxel view", |cmd| {
         gpu::image_barrier(
             ctx,
@@ -96,8 +93,8 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
             &color,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-            none,
-            color_w,
+            scope::NONE,
+            scope::COLOR_WRITE,
         );
         gpu::image_barrier(
             ctx,
@@ -105,8 +102,8 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
             &depth,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            none,
-            depth_rw,
+            scope::NONE,
+            scope::DEPTH_RW,
         );
         let att = Attachments {
             color: Some((&color, vk::AttachmentLoadOp::CLEAR, [0.05, 0.05, 0.07, 1.0])),
