@@ -117,6 +117,7 @@ fn direct_light_matches_analytic_values() {
         let expected = analytic_radiance(&scene, q, n, albedo);
         let got = common::hdr(&frame, x, y);
         let err = ((got - expected).length() / expected.length()).abs();
+        println!("{q}: GPU {got}, analytic {expected}, rel. error {err:.4}");
         assert!(err < 0.03, "at {q} (pixel {x},{y}): GPU {got}, analytic {expected}, rel. error {err:.4}");
     }
 }

@@ -77,11 +77,30 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
     let r = Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).unwrap();
     r.render().unwrap();
     let base = f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
-    let texel = |x: usize, y: usize, z: usize| Vec4::from_slice(&base[4 * (x + 16 * (y + 16 * z))..][..4]);
+    let sides: Vec<u32> = bytemuck::pod_collect_to_vec(
+        &gpu::read_image(&ctx, &r.radiance.lit_side, vk::ImageLayout::GENERAL, 0).unwrap(),
+    );
+    let lit_sides = sides.iter().filter(|&&s| s >> 24 != 0).count();
+    assert!(lit_sides > 100, "injection should record the lit side of the lit voxels ({lit_sides})");
+    // A child seen by a cone travelling along `dir` shows its light only where the lit side faces
+    // the cone (soft edge over dot(n, dir) in [0, 1/4]).
+    let texel = |x: usize, y: usize, z: usize, dir: Vec3| {
+        let i = x + 16 * (y + 16 * z);
+        let t = Vec4::from_slice(&base[4 * i..][..4]);
+        let s = sides[i];
+        if s >> 24 == 0 {
+            return t;
+        }
+        let n = Vec3::new((s & 0xff) as f32, ((s >> 8) & 0xff) as f32, ((s >> 16) & 0xff) as f32) / 255.0 * 2.0 - 1.0;
+        (t.truncate() * (1.0 - 4.0 * n.dot(dir)).clamp(0.0, 1.0)).extend(t.w)
+    };
+    let mut hidden = 0;
     for (d, chain) in r.radiance.aniso.iter().enumerate() {
         let got = f16s(&gpu::read_image(&ctx, chain, vk::ImageLayout::GENERAL, 0).unwrap());
         let axis = d / 2;
         let positive = d % 2 == 0;
+        let mut dir = Vec3::ZERO;
+        dir[axis] = if positive { 1.0 } else { -1.0 };
         let mut nonzero = 0;
         for z in 0..8 {
             for y in 0..8 {
@@ -94,7 +113,9 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
                         let mut c2 = c;
                         c2[axis] += 1;
                         let (near, far) = if positive { (c, c2) } else { (c2, c) };
-                        let (n, f) = (texel(near[0], near[1], near[2]), texel(far[0], far[1], far[2]));
+                        let (n, f) = (texel(near[0], near[1], near[2], dir), texel(far[0], far[1], far[2], dir));
+                        let unweighted = texel(near[0], near[1], near[2], Vec3::ZERO);
+                        hidden += (unweighted.truncate() != n.truncate()) as usize;
                         sum += n + (1.0 - n.w) * f;
                     }
                     let want = sum / 4.0;
@@ -109,6 +130,7 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
         }
         assert!(nonzero > 20, "direction {d}: the volume is nearly empty");
     }
+    assert!(hidden > 100, "lit faces seen from behind should be dark ({hidden} children hidden)");
     drop(r);
     common::assert_clean(&ctx);
 }

@@ -15,8 +15,17 @@
 
 layout(constant_id = 0) const bool ANISOTROPIC = false;
 
-float shadow_factor(vec3 p) {
+// Fraction of the light reaching `p` on a surface with normal `n` (3x3 PCF). The lookup point
+// moves SHADOW_NORMAL_OFFSET shadow texels along the normal (normal-offset shadows), so the
+// rasterizer's slope-scaled depth bias can stay small: a large one lets light under a thin
+// wall where it meets the floor (the stability bench, regime 3).
+float shadow_factor(vec3 p, vec3 n) {
+    // World size of one shadow texel at p: 2 w / (P00 * resolution), P00 the length of the
+    // projection's first row (the view is a rotation).
     vec4 clip = frame.light_view_proj * vec4(p, 1.0);
+    float p00 = length(vec3(frame.light_view_proj[0][0], frame.light_view_proj[1][0], frame.light_view_proj[2][0]));
+    float texel_world = 2.0 * clip.w * frame.light_cone.z / p00;
+    clip = frame.light_view_proj * vec4(p + n * (SHADOW_NORMAL_OFFSET * texel_world), 1.0);
     if (clip.w <= 0.0) return 0.0;
     vec3 ndc = clip.xyz / clip.w;
     vec2 uv = ndc.xy * 0.5 + 0.5;
@@ -40,7 +49,7 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
     vec3 irradiance = light_incident(world, l);
     vec3 direct = vec3(0.0);
     if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
-        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(world);
+        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(world, n);
     }
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
     float occlusion = 0.0;

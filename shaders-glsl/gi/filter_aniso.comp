@@ -4,12 +4,29 @@
 // front to back along X (premultiplied: c = c_front + (1 - a_front) c_back), then averages
 // the four columns. A wall one voxel thick thus stays opaque when seen face-on, where the
 // isotropic 8-child average halves its opacity per level (light leaks and dims).
+// Building level 1 from level 0, a lit voxel's light counts only in the directions its lit
+// side faces (inject.comp records it): a Lambertian face reflects into its own hemisphere, so
+// a wall lit on one side is opaque and dark seen from the other, even where its voxel is the
+// only one (the radiance-level counterpart of the thesis' §6 anisotropic voxels).
 #include "config.h"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
-layout(push_constant) uniform Push { uint direction; } push;  // 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z
+layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
+// direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0.
+layout(push_constant) uniform Push { uint direction; uint base; } push;
+
+// The child at `v` as seen by a cone travelling along `dir`: its light only where the light
+// leaves towards the cone (against `dir`), with a soft edge for grazing normals.
+vec4 child(ivec3 v, vec3 dir) {
+    vec4 c = imageLoad(src, v);
+    if (push.base == 0u) return c;
+    uint side = imageLoad(lit_side, v).r;
+    if ((side >> 24) == 0u) return c;
+    vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
+    return vec4(c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), c.a);
+}
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -18,14 +35,15 @@ void main() {
     bool positive = (push.direction & 1u) == 0u;
     ivec3 step = ivec3(0);
     step[axis] = 1;
+    vec3 dir = vec3(step) * (positive ? 1.0 : -1.0);
     ivec3 u = ivec3(0), w = ivec3(0);
     u[(axis + 1) % 3] = 1;
     w[(axis + 2) % 3] = 1;
     vec4 sum = vec4(0.0);
     for (int i = 0; i < 4; i++) {
         ivec3 base = 2 * v + u * (i & 1) + w * (i >> 1);
-        vec4 near = imageLoad(src, positive ? base : base + step);
-        vec4 far = imageLoad(src, positive ? base + step : base);
+        vec4 near = child(positive ? base : base + step, dir);
+        vec4 far = child(positive ? base + step : base, dir);
         sum += near + (1.0 - near.a) * far;
     }
     imageStore(dst, v, sum * 0.25);

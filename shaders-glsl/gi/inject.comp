@@ -3,7 +3,9 @@
 // reconstructs the lit point from its depth, finds its voxel and writes the light that voxel
 // reflects: albedo/pi * E * |n.l| (Lambert, n the voxel's averaged normal), plus emission.
 // The value is computed at the voxel centre, so every texel that hits a voxel writes the same
-// value: the result does not depend on which write lands last.
+// value: the result does not depend on which write lands last. It also records the lit side:
+// the voxel normal turned towards the light, which the anisotropic filter uses to keep a lit
+// face dark when seen from behind (a Lambertian face reflects into its own hemisphere only).
 #include "frame.glsl"
 #include "light.glsl"
 #include "rgb9e5.glsl"
@@ -14,6 +16,7 @@ layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_albedo;
 layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
+layout(set = 1, binding = 5, r32ui) uniform writeonly uimage3D lit_side;
 
 const float PI = 3.14159265358979;
 
@@ -30,20 +33,22 @@ void main() {
     vec2 uv = (vec2(texel) + 0.5) / vec2(size);
     vec4 world = frame.light_inv_view_proj * vec4(uv * 2.0 - 1.0, depth, 1.0);
     vec3 p = world.xyz / world.w;
-    // The lit point lies on a surface; its voxel is the occupied one on the light's side of it,
-    // else the one just behind (a wall thinner than a voxel must not light its far side).
+    // The lit point lies on a surface, but the shadow map's slope-scaled depth bias has pushed
+    // it along the light ray behind that surface, by up to a few voxels where the light grazes.
+    // Its voxel is the first occupied one walking the ray from INJECT_SEARCH_VOXELS before the
+    // point to one voxel past it: a wall thinner than a voxel must not light its far side.
     vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
     float n = frame.voxel_grid.x;
     float step = 0.25 * frame.voxel_origin.w;
-    ivec3 v = ivec3(floor(world_to_uvw(p - l_dir * step) * n));
-    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
-    uint a = imageLoad(voxel_albedo, v).r;
-    if ((a >> 24) == 0u) {
-        v = ivec3(floor(world_to_uvw(p + l_dir * step) * n));
-        if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
-        a = imageLoad(voxel_albedo, v).r;
-        if ((a >> 24) == 0u) return;
+    const int steps = 4 * (INJECT_SEARCH_VOXELS + 1);
+    vec3 q = p - l_dir * (4.0 * float(INJECT_SEARCH_VOXELS) * step);
+    ivec3 v;
+    uint a = 0u;
+    for (int i = 0; i <= steps && (a >> 24) == 0u; i++, q += l_dir * step) {
+        v = ivec3(floor(world_to_uvw(q) * n));
+        if (all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, ivec3(n)))) a = imageLoad(voxel_albedo, v).r;
     }
+    if ((a >> 24) == 0u) return;
     vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
     vec3 normal = unpack(imageLoad(voxel_normal, v).r).xyz * 2.0 - 1.0;
     vec3 l;
@@ -52,4 +57,9 @@ void main() {
     vec3 reflected = unpack(a).rgb / PI * irradiance * cos_theta;
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
     imageStore(target, v, vec4(emission + reflected, 1.0));
+    if (length(normal) > 1e-3) {
+        vec3 side = normalize(normal) * (dot(normal, l) < 0.0 ? -1.0 : 1.0);
+        uvec3 q = uvec3(round((side * 0.5 + 0.5) * 255.0));
+        imageStore(lit_side, v, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
+    }
 }

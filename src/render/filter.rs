@@ -52,7 +52,7 @@ impl FilterPass {
         let pipeline = Pipeline::compute(ctx, "mip filter", Stage::new(c, shaders::GI_FILTER_COMP), &[sets.layout], 0)?;
         let per_dir = volume.levels.saturating_sub(1);
         let aniso_sets =
-            DescriptorSet::new_many(ctx, "anisotropic mip filter", &[storage(0), storage(1)], 6 * per_dir)?;
+            DescriptorSet::new_many(ctx, "anisotropic mip filter", &[storage(0), storage(1), storage(2)], 6 * per_dir)?;
         for (d, chain) in volume.aniso.iter().enumerate() {
             for level in 1..volume.levels {
                 let set = d * per_dir as usize + level as usize - 1;
@@ -64,6 +64,12 @@ impl FilterPass {
                     vk::DescriptorType::STORAGE_IMAGE,
                     &[storage_info(chain.mip_view(level - 1))],
                 );
+                aniso_sets.write_images_at(
+                    set,
+                    2,
+                    vk::DescriptorType::STORAGE_IMAGE,
+                    &[storage_info(volume.lit_side.view.raw)],
+                );
             }
         }
         let aniso_pipeline = Pipeline::compute(
@@ -71,7 +77,7 @@ impl FilterPass {
             "anisotropic mip filter",
             Stage::new(c, shaders::GI_FILTER_ANISO_COMP),
             &[aniso_sets.layout],
-            4,
+            8,
         )?;
         Ok(FilterPass {
             ctx: ctx.clone(),
@@ -99,7 +105,7 @@ impl FilterPass {
                 let n = (self.resolution >> level).max(1);
                 for d in 0..6u32 {
                     self.aniso_pipeline.bind(cmd, &[self.aniso_sets.sets[d as usize * per_dir + level as usize - 1]]);
-                    self.aniso_pipeline.push(cmd, &d);
+                    self.aniso_pipeline.push(cmd, &[d, (level == 1) as u32]);
                     gpu::dispatch(&self.ctx, cmd, [n, n, n], [WORKGROUP_3D; 3]);
                 }
                 gpu::memory_barrier(&self.ctx, cmd, w, r);

@@ -38,10 +38,11 @@ impl InjectPass {
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
-        let resolve_set = DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2)])?;
+        let resolve_set = DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2), storage(3)])?;
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
+        resolve_set.write_storage(3, radiance.lit_side.view.raw);
         let resolve =
             Pipeline::compute(ctx, "resolve", Stage::new(c, shaders::GI_RESOLVE_COMP), &[resolve_set.layout], 0)?;
 
@@ -63,6 +64,7 @@ impl InjectPass {
                 storage(2),
                 storage(3),
                 storage(4),
+                storage(5),
             ],
         )?;
         inject_set.write_sampled(0, shadow.map.view.raw, depth_sampler.raw);
@@ -70,6 +72,7 @@ impl InjectPass {
         inject_set.write_storage(2, voxels.normal.view.raw);
         inject_set.write_storage(3, voxels.emission.view.raw);
         inject_set.write_storage(4, radiance.injected.view.raw);
+        inject_set.write_storage(5, radiance.lit_side.view.raw);
         let inject = Pipeline::compute(
             ctx,
             "inject",

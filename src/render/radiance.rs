@@ -17,6 +17,11 @@ pub struct RadianceVolume {
     /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z): level l of the
     /// volume is their mip l - 1.
     pub aniso: Vec<Image>,
+    /// Per level-0 voxel, the side its injected light leaves from: the voxel's normal turned
+    /// towards the light (packed like the voxel normals, high byte 1), or 0 where the voxel
+    /// emits to every side. The directional chains use it so that a lit face is dark when seen
+    /// from behind.
+    pub lit_side: Image,
     pub sampler: Sampler,
     pub levels: u32,
 }
@@ -49,9 +54,11 @@ impl RadianceVolume {
                 Image::new(ctx, &format!("radiance {d}"), desc.mips((levels - 1).max(1)))
             })
             .collect::<Result<Vec<_>>>()?;
+        let lit_side =
+            Image::new(ctx, "lit side", ImageDesc::d3(crate::voxel::volume::VOXEL_FORMAT, resolution, storage))?;
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
-            for img in [&injected, &radiance].into_iter().chain(&aniso) {
+            for img in [&injected, &radiance, &lit_side].into_iter().chain(&aniso) {
                 gpu::clear_to_general(ctx, cmd, img, scope::NONE);
             }
         })?;
@@ -59,6 +66,7 @@ impl RadianceVolume {
             injected,
             radiance,
             aniso,
+            lit_side,
             sampler: Sampler::linear_border(ctx, "radiance sampler")?,
             levels,
         })

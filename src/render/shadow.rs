@@ -1,5 +1,6 @@
 //! Shadow map pass (Freed 2018 §4.2): the scene's depth from the light into a D32 texture,
-//! with slope-scaled depth bias; read by shading (PCF) and later by radiance injection.
+//! with a small slope-scaled depth bias (shading adds a normal offset; a large slope bias let
+//! light under thin walls); read by shading (PCF) and later by radiance injection.
 
 use std::sync::Arc;
 
@@ -31,7 +32,7 @@ impl ShadowPass {
         desc.depth_format = SHADOW_FORMAT;
         desc.depth_test = true;
         desc.depth_write = true;
-        desc.depth_bias = Some((2.0, 2.5));
+        desc.depth_bias = Some((2.0, 1.0));
         let pipeline = Pipeline::graphics(ctx, &desc)?;
         Ok(ShadowPass { ctx: ctx.clone(), pipeline, map })
     }
