@@ -69,7 +69,7 @@ struct BenchArgs {
     #[arg(long, value_name = "DIR")]
     replot: Option<PathBuf>,
     /// Measure where each method fails (tessellation limit, raster cracks, small triangles,
-    /// self-illumination) instead of the speed/accuracy sweep.
+    /// light leaking, temporal flicker, self-illumination) instead of the speed/accuracy sweep.
     #[arg(long)]
     stability: bool,
     /// Output folder; default bench/<date>-<device>.
