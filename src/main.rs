@@ -578,7 +578,7 @@ fn bench(args: BenchArgs) -> Result<()> {
         for g in &regimes {
             println!("{}", g.title);
             for s in &g.series {
-                let pts: Vec<String> = s.points.iter().map(|(x, y)| format!("{x}: {y:.4}")).collect();
+                let pts: Vec<String> = s.points.iter().map(|(x, y)| format!("{}: {y:.4}", *x as f32)).collect();
                 println!("  {:<32} {}", s.label, pts.join("  "));
             }
             for f in vct::bench::charts::draw_regime(&out, g)? {

@@ -431,3 +431,44 @@ fn deferred_tracing_renders_what_forward_tracing_renders() {
     // A few silhouette pixels differ (quad-interpolated vs rebuilt positions); the rest agree.
     assert!(mean < 0.5 && p999 <= 8, "mean {mean}, 99.9th percentile {p999}");
 }
+
+/// The temporal blend reprojects its history when a following volume moves: after one whole-voxel
+/// step of a converged volume over a still scene, level 0 equals a volume converged at the new
+/// place, while the old volume read in place (no reprojection) is far from it.
+#[test]
+fn temporal_blend_reprojects_history_when_the_volume_moves() {
+    let ctx = common::context();
+    let mut scene = Scene::embedded_default().unwrap();
+    scene.settings.gi.temporal = 0.2;
+    let o =
+        RenderOptions { follow: Some(vct::render::Follow { extent: 4.0, snap: true }), ..options(View::Indirect, 32) };
+    // A centre half a voxel (4 m / 32) off the snapping lattice, so one voxel moves the origin by one.
+    let centre = Vec3::new(0.0625, 2.8125, 0.0625);
+    let step = Vec3::X * 0.125;
+    let level0 =
+        |r: &Renderer| f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
+    let converged = |at: Vec3| {
+        let mut r = Renderer::new(&ctx, scene.clone(), o).unwrap();
+        r.follow(at).unwrap();
+        for _ in 0..25 {
+            r.render().unwrap();
+        }
+        r
+    };
+    let mut moved = converged(centre);
+    let before = level0(&moved);
+    moved.follow(centre + step).unwrap();
+    moved.render().unwrap();
+    let after = level0(&moved);
+    drop(moved);
+    let fresh = level0(&converged(centre + step));
+    let rel = |a: &[f32], b: &[f32]| {
+        let d: f64 = a.iter().zip(b).map(|(x, y)| (x - y).abs() as f64).sum();
+        d / b.iter().map(|y| y.abs() as f64).sum::<f64>()
+    };
+    let (reprojected, in_place) = (rel(&after, &fresh), rel(&before, &fresh));
+    println!("level 0 against a volume converged in place: reprojected {reprojected:.4}, not moved {in_place:.4}");
+    assert!(in_place > 0.2, "a one-voxel step should change level 0 a lot: {in_place}");
+    assert!(reprojected < 0.01, "the reprojected blend should match: {reprojected}");
+    common::assert_clean(&ctx);
+}

@@ -22,7 +22,7 @@
 #define PCF_RADIUS 1
 // Normal offset of the shadow lookup, in shadow texels at the receiver.
 #define SHADOW_NORMAL_OFFSET 1.0
-// Radiance injection looks for the lit voxel from this many voxels before the shadow-map point
+// Radiance injection looks for the lit voxel up to this many voxels before the shadow-map point
 // (towards the light): the slope-scaled depth bias pushes grazing points behind their surface.
 #define INJECT_SEARCH_VOXELS 3
 

@@ -19,6 +19,7 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 voxel_grid;    // x: resolution N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
     vec4 cone;          // x: max steps; y: bias along the normal (voxels); z: start height (voxels); w: LOD offset
     vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0)
+    vec4 history_shift; // xyz: this frame's grid origin in the previous frame's grid (voxels)
 } frame;
 
 // World position to normalized voxel-texture coordinates [0, 1]^3.

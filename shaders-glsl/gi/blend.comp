@@ -1,17 +1,24 @@
 #version 460
 // Temporal filtering (Freed 2018 §4.7.2): the radiance volume's level 0 becomes
-// mix(previous, injected, factor); factor 1 (the default) keeps only this frame.
+// mix(previous, injected, factor); factor 1 (the default) keeps only this frame. When the
+// volume follows the camera its grid moves, so the previous frame's radiance is reprojected:
+// read (trilinearly) where this voxel's centre lay in the previous grid, from a copy of the
+// previous level 0. Voxels new to the volume start from this frame alone.
 #include "frame.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 1, binding = 0, rgba16f) uniform readonly image3D injected;
-layout(set = 1, binding = 1, rgba16f) uniform image3D radiance;
+layout(set = 1, binding = 1, rgba16f) uniform writeonly image3D radiance;
+layout(set = 1, binding = 2) uniform sampler3D history;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, imageSize(radiance)))) return;
+    ivec3 size = imageSize(radiance);
+    if (any(greaterThanEqual(v, size))) return;
     vec4 now = imageLoad(injected, v);
     float factor = frame.voxel_grid.w > 0.5 ? 1.0 : frame.voxel_grid.z;
-    if (factor < 1.0) now = mix(imageLoad(radiance, v), now, factor);
+    vec3 previous = (vec3(v) + 0.5 + frame.history_shift.xyz) / vec3(size);
+    bool inside = all(greaterThanEqual(previous, vec3(0.0))) && all(lessThanEqual(previous, vec3(1.0)));
+    if (factor < 1.0 && inside) now = mix(textureLod(history, previous, 0.0), now, factor);
     imageStore(radiance, v, now);
 }

@@ -35,20 +35,32 @@ void main() {
     vec3 p = world.xyz / world.w;
     // The lit point lies on a surface, but the shadow map's slope-scaled depth bias has pushed
     // it along the light ray behind that surface, by up to a few voxels where the light grazes.
-    // Its voxel is the first occupied one walking the ray from INJECT_SEARCH_VOXELS before the
-    // point to one voxel past it: a wall thinner than a voxel must not light its far side.
+    // Its voxel is the occupied one nearest the light in the first run of occupied voxels met
+    // walking the ray back towards the light (at most INJECT_SEARCH_VOXELS), else the one just
+    // behind the point: a wall thinner than a voxel must not light its far side.
     vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
     float n = frame.voxel_grid.x;
     float step = 0.25 * frame.voxel_origin.w;
-    const int steps = 4 * (INJECT_SEARCH_VOXELS + 1);
-    vec3 q = p - l_dir * (4.0 * float(INJECT_SEARCH_VOXELS) * step);
-    ivec3 v;
+    ivec3 v = ivec3(-1);
     uint a = 0u;
-    for (int i = 0; i <= steps && (a >> 24) == 0u; i++, q += l_dir * step) {
-        v = ivec3(floor(world_to_uvw(q) * n));
-        if (all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, ivec3(n)))) a = imageLoad(voxel_albedo, v).r;
+    vec3 q = p - l_dir * step;
+    for (int i = 0; i < 4 * INJECT_SEARCH_VOXELS; i++, q -= l_dir * step) {
+        ivec3 u = ivec3(floor(world_to_uvw(q) * n));
+        if (any(lessThan(u, ivec3(0))) || any(greaterThanEqual(u, ivec3(n)))) break;
+        uint b = imageLoad(voxel_albedo, u).r;
+        if ((b >> 24) != 0u) {
+            v = u;
+            a = b;
+        } else if ((a >> 24) != 0u) {
+            break;
+        }
     }
-    if ((a >> 24) == 0u) return;
+    if ((a >> 24) == 0u) {
+        v = ivec3(floor(world_to_uvw(p + l_dir * step) * n));
+        if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
+        a = imageLoad(voxel_albedo, v).r;
+        if ((a >> 24) == 0u) return;
+    }
     vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
     vec3 normal = unpack(imageLoad(voxel_normal, v).r).xyz * 2.0 - 1.0;
     vec3 l;

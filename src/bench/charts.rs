@@ -323,11 +323,22 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
             chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
         }};
     }
-    if g.log_x {
-        body!(builder(&root, &g.title).build_cartesian_2d((xlo * 0.8..xhi * 1.25).log_scale(), yr)?);
-    } else {
-        let xp = ((xhi - xlo) * 0.05).max(1e-3);
-        body!(builder(&root, &g.title).build_cartesian_2d(xlo - xp..xhi + xp, yr)?);
+    // Log axes label the measured x values themselves (plotters would label only powers of 10).
+    let xs = || {
+        let mut v: Vec<f64> = pts().map(|p| p.0).collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
+    let xp = ((xhi - xlo) * 0.05).max(1e-3);
+    let ylog = (ylo.max(1e-9) * 0.7)..(yhi * 1.4);
+    match (g.log_x, g.log_y) {
+        (true, true) => body!(builder(&root, &g.title)
+            .build_cartesian_2d((xlo * 0.8..xhi * 1.25).log_scale().with_key_points(xs()), ylog.log_scale())?),
+        (true, false) => body!(builder(&root, &g.title)
+            .build_cartesian_2d((xlo * 0.8..xhi * 1.25).log_scale().with_key_points(xs()), yr)?),
+        (false, true) => body!(builder(&root, &g.title).build_cartesian_2d(xlo - xp..xhi + xp, ylog.log_scale())?),
+        (false, false) => body!(builder(&root, &g.title).build_cartesian_2d(xlo - xp..xhi + xp, yr)?),
     }
     root.present()
 }

@@ -39,6 +39,8 @@ pub struct Regime {
     pub x: String,
     pub y: String,
     pub log_x: bool,
+    /// A logarithmic y axis (every value must be positive).
+    pub log_y: bool,
     pub series: Vec<Series>,
 }
 
@@ -78,6 +80,7 @@ pub fn tessellation_limit(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
         x: "triangle leg (voxels)".into(),
         y: "recall".into(),
         log_x: false,
+        log_y: false,
         series,
     })
 }
@@ -101,6 +104,7 @@ pub fn raster_cracks(ctx: &Arc<Context>, scales: &[f32]) -> Result<Regime> {
         x: "viewport scale (pixels per voxel)".into(),
         y: "recall (Cornell, 64³)".into(),
         log_x: true,
+        log_y: false,
         series,
     })
 }
@@ -132,6 +136,7 @@ pub fn subvoxel_triangles(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
         x: "triangle size (voxels)".into(),
         y: "recall".into(),
         log_x: true,
+        log_y: false,
         series,
     })
 }
@@ -187,6 +192,7 @@ pub fn self_illumination(ctx: &Arc<Context>, biases: &[f32]) -> Result<Regime> {
         x: "cone offset along the normal (voxels)".into(),
         y: "indirect / direct (truth: 0)".into(),
         log_x: false,
+        log_y: false,
         series,
     })
 }
@@ -258,6 +264,7 @@ pub fn light_leaking(ctx: &Arc<Context>, resolutions: &[u32]) -> Result<Regime> 
         x: "voxel resolution N".into(),
         y: "mean radiance in the dark room (truth: 0)".into(),
         log_x: true,
+        log_y: true,
         series,
     })
 }
@@ -319,7 +326,8 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
     let configs = [
         ("sliding volume", true, false, 1.0),
         ("sliding volume, snapped", true, true, 1.0),
-        ("sliding volume, temporal 0.2", true, false, 0.2),
+        ("sliding volume, temporal 0.2 (reprojected)", true, false, 0.2),
+        ("sliding volume, snapped, temporal 0.2", true, true, 0.2),
         ("turning light", false, false, 1.0),
         ("turning light, temporal 0.2", false, false, 0.2),
     ];
@@ -335,6 +343,7 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
         x: "frame".into(),
         y: "indirect light change from the previous frame (%)".into(),
         log_x: false,
+        log_y: false,
         series,
     })
 }

@@ -102,6 +102,60 @@ pub fn clear_to_general(ctx: &Context, cmd: vk::CommandBuffer, image: &Image, af
     };
 }
 
+/// Copies mip `src_mip` of `src` into mip 0 of `dst` (same extent; both are in GENERAL before
+/// and after, and in the transfer layouts during the copy), ordered after anything before it
+/// and before compute shaders that sample `dst`.
+pub fn copy_level(ctx: &Context, cmd: vk::CommandBuffer, src: &Image, src_mip: u32, dst: &Image) {
+    use vk::ImageLayout as L;
+    let (from, to) = (src_mip..src_mip + 1, 0..1);
+    image_barrier_mips(
+        ctx,
+        cmd,
+        src,
+        from.clone(),
+        L::GENERAL,
+        L::TRANSFER_SRC_OPTIMAL,
+        scope::ANY,
+        scope::TRANSFER_READ,
+    );
+    image_barrier_mips(
+        ctx,
+        cmd,
+        dst,
+        to.clone(),
+        L::GENERAL,
+        L::TRANSFER_DST_OPTIMAL,
+        scope::ANY,
+        scope::TRANSFER_WRITE,
+    );
+    let layers = |mip| vk::ImageSubresourceLayers {
+        aspect_mask: aspect_of(src.desc.format),
+        mip_level: mip,
+        base_array_layer: 0,
+        layer_count: 1,
+    };
+    let region = [vk::ImageCopy {
+        src_subresource: layers(src_mip),
+        dst_subresource: layers(0),
+        extent: dst.desc.extent,
+        ..Default::default()
+    }];
+    unsafe {
+        ctx.device.cmd_copy_image(cmd, src.raw, L::TRANSFER_SRC_OPTIMAL, dst.raw, L::TRANSFER_DST_OPTIMAL, &region)
+    };
+    image_barrier_mips(ctx, cmd, src, from, L::TRANSFER_SRC_OPTIMAL, L::GENERAL, scope::TRANSFER_READ, scope::ANY);
+    image_barrier_mips(
+        ctx,
+        cmd,
+        dst,
+        to,
+        L::TRANSFER_DST_OPTIMAL,
+        L::GENERAL,
+        scope::TRANSFER_WRITE,
+        scope::COMPUTE_SAMPLED,
+    );
+}
+
 /// Number of workgroups covering `threads` with groups of `local` threads per axis.
 pub fn group_count(threads: [u32; 3], local: [u32; 3]) -> [u32; 3] {
     [threads[0].div_ceil(local[0]), threads[1].div_ceil(local[1]), threads[2].div_ceil(local[2])]

@@ -25,6 +25,8 @@ pub struct FrameUniforms {
     pub voxel_grid: Vec4,
     pub cone: Vec4,
     pub view: Vec4,
+    /// xyz: where this frame's voxel grid origin lies in the previous frame's grid (voxels).
+    pub history_shift: Vec4,
 }
 
 /// What the frame shows besides the full image (the GI debug views).
@@ -96,6 +98,8 @@ pub struct FrameState<'a> {
     pub gi_on: bool,
     pub view: View,
     pub first_frame: bool,
+    /// The previous frame's grid origin (a following volume moves it).
+    pub previous_origin: Vec3,
 }
 
 /// Near and far planes that contain the scene bounds seen from `eye`.
@@ -171,6 +175,7 @@ impl FrameUniforms {
             ),
             cone: Vec4::new(f.gi.steps as f32, f.gi.bias, f.gi.cone_start, f.gi.lod_offset),
             view: Vec4::new(f.view.code() as f32, level as f32, f.gi_on as u32 as f32, 0.0),
+            history_shift: ((f.grid.origin - f.previous_origin) / f.grid.voxel).extend(0.0),
         }
     }
 }

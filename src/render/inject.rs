@@ -81,9 +81,22 @@ impl InjectPass {
             0,
         )?;
 
-        let blend_set = DescriptorSet::new(ctx, "temporal blend", &[storage(0), storage(1)])?;
+        let blend_set = DescriptorSet::new(
+            ctx,
+            "temporal blend",
+            &[storage(0), storage(1), Binding::new(2, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c)],
+        )?;
         blend_set.write_storage(0, radiance.injected.view.raw);
         blend_set.write_storage(1, radiance.radiance.mip_view(0));
+        blend_set.write_images(
+            2,
+            vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+            &[vk::DescriptorImageInfo {
+                sampler: radiance.sampler.raw,
+                image_view: radiance.history.view.raw,
+                image_layout: vk::ImageLayout::GENERAL,
+            }],
+        );
         let blend = Pipeline::compute(
             ctx,
             "temporal blend",
@@ -106,7 +119,9 @@ impl InjectPass {
         })
     }
 
-    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu) {
+    /// With `temporal` (a blend factor below 1) the previous level 0 is first copied aside for
+    /// the blend to reproject.
+    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, radiance: &RadianceVolume, temporal: bool) {
         let ctx = &self.ctx;
         let n = self.resolution;
         let cube = [WORKGROUP_3D; 3];
@@ -117,6 +132,9 @@ impl InjectPass {
         self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
         gpu::dispatch(ctx, cmd, [self.shadow_resolution, self.shadow_resolution, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
         gpu::memory_barrier(ctx, cmd, w, r);
+        if temporal {
+            gpu::copy_level(ctx, cmd, &radiance.radiance, 0, &radiance.history);
+        }
         self.blend.bind(cmd, &[scene.set.raw, self.blend_set.raw]);
         gpu::dispatch(ctx, cmd, [n, n, n], cube);
         gpu::memory_barrier(ctx, cmd, w, r);

@@ -164,6 +164,8 @@ pub struct Renderer {
     pub targets: Targets,
     timer: GpuTimer,
     frame_index: Cell<u64>,
+    /// The grid origin of the last submitted frame, for the temporal blend's reprojection.
+    previous_origin: Cell<glam::Vec3>,
     /// Problems worth telling the user (coarse shadow map, subdivided triangles).
     pub notes: Vec<String>,
 }
@@ -220,6 +222,7 @@ impl Renderer {
                 grid.voxel
             ));
         }
+        let origin = voxels.grid.origin;
         Ok(Renderer {
             ctx: ctx.clone(),
             scene,
@@ -239,6 +242,7 @@ impl Renderer {
             targets,
             timer,
             frame_index: Cell::new(0),
+            previous_origin: Cell::new(origin),
             notes,
         })
     }
@@ -253,6 +257,7 @@ impl Renderer {
             gi_on: self.options.gi,
             view: self.options.view,
             first_frame: self.frame_index.get() == 0,
+            previous_origin: self.previous_origin.get(),
         };
         let u = FrameUniforms::new(&s.camera, &s.light, &s.mesh.bounds, s.settings.shadow_resolution, &state);
         self.scene_gpu.uniforms.write_pod(&u);
@@ -266,7 +271,9 @@ impl Renderer {
         t.span(cmd, "total", || {
             t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
             t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
-            t.span(cmd, "inject", || self.inject.record(cmd, scene));
+            t.span(cmd, "inject", || {
+                self.inject.record(cmd, scene, &self.radiance, self.scene.settings.gi.temporal < 1.0)
+            });
             t.span(cmd, "filter", || self.filter.record(cmd, self.options.anisotropic));
             if self.options.view.is_volume() {
                 t.span(cmd, "volume view", || self.volume_view.record(cmd, scene, targets));
@@ -292,6 +299,7 @@ impl Renderer {
     /// Marks a frame as submitted (the next one may blend with its radiance).
     pub fn frame_recorded(&self) {
         self.frame_index.set(self.frame_index.get() + 1);
+        self.previous_origin.set(self.voxels.grid.origin);
     }
 
     /// The GPU time of each pass of the last finished frame.

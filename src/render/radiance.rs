@@ -22,6 +22,9 @@ pub struct RadianceVolume {
     /// emits to every side. The directional chains use it so that a lit face is dark when seen
     /// from behind.
     pub lit_side: Image,
+    /// A copy of the previous frame's level 0, which the temporal blend reprojects (only when
+    /// temporal filtering is on).
+    pub history: Image,
     pub sampler: Sampler,
     pub levels: u32,
 }
@@ -56,9 +59,14 @@ impl RadianceVolume {
             .collect::<Result<Vec<_>>>()?;
         let lit_side =
             Image::new(ctx, "lit side", ImageDesc::d3(crate::voxel::volume::VOXEL_FORMAT, resolution, storage))?;
+        let history = Image::new(
+            ctx,
+            "radiance history",
+            ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED),
+        )?;
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
-            for img in [&injected, &radiance, &lit_side].into_iter().chain(&aniso) {
+            for img in [&injected, &radiance, &lit_side, &history].into_iter().chain(&aniso) {
                 gpu::clear_to_general(ctx, cmd, img, scope::NONE);
             }
         })?;
@@ -67,6 +75,7 @@ impl RadianceVolume {
             radiance,
             aniso,
             lit_side,
+            history,
             sampler: Sampler::linear_border(ctx, "radiance sampler")?,
             levels,
         })

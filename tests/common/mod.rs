@@ -12,6 +12,8 @@ use vct::scene::Scene;
 /// A context with the validation layer on (every test asks for it).
 pub fn context() -> Arc<Context> {
     std::env::set_var("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()));
+    // Validation messages go through `log`: show them with the failing test's output.
+    let _ = env_logger::builder().is_test(true).filter_level(log::LevelFilter::Warn).try_init();
     Context::new(&ContextOptions { validation: true, ..Default::default() }).expect("Vulkan context with validation")
 }
 
