@@ -17,6 +17,8 @@ layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
 layout(set = 1, binding = 5, r32ui) uniform writeonly uimage3D lit_side;
+// Record the lit side (only the anisotropic filter reads it; the pass clears it first).
+layout(constant_id = 0) const bool ANISOTROPIC = false;
 
 const float PI = 3.14159265358979;
 
@@ -36,16 +38,19 @@ void main() {
     // The lit point lies on a surface, but the shadow map's slope-scaled depth bias has pushed
     // it along the light ray behind that surface, by up to a few voxels where the light grazes.
     // Its voxel is the occupied one nearest the light in the first run of occupied voxels met
-    // walking the ray back towards the light (at most INJECT_SEARCH_VOXELS), else the one just
+    // walking the ray back towards the light (INJECT_SEARCH_VOXELS at most), else the one just
     // behind the point: a wall thinner than a voxel must not light its far side.
     vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
     float n = frame.voxel_grid.x;
     float step = 0.25 * frame.voxel_origin.w;
     ivec3 v = ivec3(-1);
     uint a = 0u;
-    vec3 q = p - l_dir * step;
-    for (int i = 0; i < 4 * INJECT_SEARCH_VOXELS; i++, q -= l_dir * step) {
-        ivec3 u = ivec3(floor(world_to_uvw(q) * n));
+    // In voxel units, from a quarter voxel before the point, one voxel at a time: a step no
+    // longer than a voxel cannot jump over a wall's voxel layer. Mostly two loads: the surface's
+    // voxel and the empty one before it.
+    vec3 g = world_to_uvw(p) * n - l_dir * 0.25;
+    for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= l_dir) {
+        ivec3 u = ivec3(floor(g));
         if (any(lessThan(u, ivec3(0))) || any(greaterThanEqual(u, ivec3(n)))) break;
         uint b = imageLoad(voxel_albedo, u).r;
         if ((b >> 24) != 0u) {
@@ -69,7 +74,7 @@ void main() {
     vec3 reflected = unpack(a).rgb / PI * irradiance * cos_theta;
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
     imageStore(target, v, vec4(emission + reflected, 1.0));
-    if (length(normal) > 1e-3) {
+    if (ANISOTROPIC && length(normal) > 1e-3) {
         vec3 side = normalize(normal) * (dot(normal, l) < 0.0 ? -1.0 : 1.0);
         uvec3 q = uvec3(round((side * 0.5 + 0.5) * 255.0));
         imageStore(lit_side, v, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));

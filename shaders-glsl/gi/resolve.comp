@@ -1,8 +1,7 @@
 #version 460
 // Radiance injection, step 1 (Freed 2018 §4.3, the "transfer" of occlusion): one thread per
 // voxel starts the injection target with the voxel's emitted radiance and opacity 1 for every
-// occupied voxel, 0 elsewhere, and marks every voxel as emitting to all sides. Direct light,
-// and the side it leaves from, are added by inject.comp.
+// occupied voxel, 0 elsewhere. Direct light is added by inject.comp.
 #include "config.h"
 #include "rgb9e5.glsl"
 
@@ -10,7 +9,6 @@ layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = 
 layout(set = 0, binding = 0, r32ui) uniform readonly uimage3D voxel_albedo;
 layout(set = 0, binding = 1, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image3D target;
-layout(set = 0, binding = 3, r32ui) uniform writeonly uimage3D lit_side;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -18,5 +16,4 @@ void main() {
     bool occupied = (imageLoad(voxel_albedo, v).r >> 24) != 0u;
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
     imageStore(target, v, occupied ? vec4(emission, 1.0) : vec4(0.0));
-    imageStore(lit_side, v, uvec4(0u));
 }

@@ -311,7 +311,13 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
     macro_rules! body {
         ($chart:expr) => {{
             let mut chart = $chart;
-            chart.configure_mesh().x_desc(g.x.as_str()).y_desc(g.y.as_str()).draw()?;
+            chart
+                .configure_mesh()
+                .x_desc(g.x.as_str())
+                .y_desc(g.y.as_str())
+                .x_label_formatter(&|v| format!("{v}"))
+                .light_line_style(TRANSPARENT)
+                .draw()?;
             for (i, s) in g.series.iter().enumerate() {
                 let c = PALETTE[i % PALETTE.len()];
                 chart

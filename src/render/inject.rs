@@ -23,6 +23,7 @@ pub struct InjectPass {
     inject_set: DescriptorSet,
     blend: Pipeline,
     blend_set: DescriptorSet,
+    anisotropic: bool,
     _depth_sampler: Sampler,
     resolution: u32,
     shadow_resolution: u32,
@@ -35,14 +36,14 @@ impl InjectPass {
         shadow: &ShadowPass,
         voxels: &VoxelVolume,
         radiance: &RadianceVolume,
+        anisotropic: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
-        let resolve_set = DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2), storage(3)])?;
+        let resolve_set = DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2)])?;
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
-        resolve_set.write_storage(3, radiance.lit_side.view.raw);
         let resolve =
             Pipeline::compute(ctx, "resolve", Stage::new(c, shaders::GI_RESOLVE_COMP), &[resolve_set.layout], 0)?;
 
@@ -76,7 +77,7 @@ impl InjectPass {
         let inject = Pipeline::compute(
             ctx,
             "inject",
-            Stage::new(c, shaders::GI_INJECT_COMP),
+            Stage::new(c, shaders::GI_INJECT_COMP).spec(&[anisotropic as u32]),
             &[scene.set.layout, inject_set.layout],
             0,
         )?;
@@ -113,6 +114,7 @@ impl InjectPass {
             inject_set,
             blend,
             blend_set,
+            anisotropic,
             _depth_sampler: depth_sampler,
             resolution: voxels.grid.resolution,
             shadow_resolution: shadow.map.desc.extent.width,
@@ -120,7 +122,8 @@ impl InjectPass {
     }
 
     /// With `temporal` (a blend factor below 1) the previous level 0 is first copied aside for
-    /// the blend to reproject.
+    /// the blend to reproject. With anisotropic filtering the lit side of each lit voxel is
+    /// recorded too.
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, radiance: &RadianceVolume, temporal: bool) {
         let ctx = &self.ctx;
         let n = self.resolution;
@@ -129,6 +132,10 @@ impl InjectPass {
         self.resolve.bind(cmd, &[self.resolve_set.raw]);
         gpu::dispatch(ctx, cmd, [n, n, n], cube);
         gpu::memory_barrier(ctx, cmd, w, r);
+        if self.anisotropic {
+            gpu::clear_to_general(ctx, cmd, &radiance.lit_side, scope::ANY);
+            gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, w);
+        }
         self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
         gpu::dispatch(ctx, cmd, [self.shadow_resolution, self.shadow_resolution, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
         gpu::memory_barrier(ctx, cmd, w, r);

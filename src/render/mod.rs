@@ -195,7 +195,7 @@ impl Renderer {
         let voxelizer = Voxelizer::new(ctx, &scene, &scene_gpu, &voxels, options.method)?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
         let radiance = RadianceVolume::new(ctx, resolution)?;
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance)?;
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, options.anisotropic)?;
         let filter = FilterPass::new(ctx, &radiance)?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
         let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, options.anisotropic)?;
