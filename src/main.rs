@@ -116,6 +116,31 @@ struct SceneArgs {
     /// With --follow: move the volume continuously instead of in whole voxels.
     #[arg(long)]
     no_snap: bool,
+    /// Cone start offset along the normal, in voxels (0..=16; overrides the scene's gi.bias;
+    /// too small lets a lit surface light itself).
+    #[arg(long, value_name = "VOXELS", value_parser = cone_bias)]
+    cone_bias: Option<f32>,
+    /// Temporal blend factor: this frame's weight against the reprojected previous frames
+    /// (0.01..=1, 1 = off; overrides the scene's gi.temporal).
+    #[arg(long, value_name = "FACTOR", value_parser = temporal)]
+    temporal: Option<f32>,
+}
+
+fn float_in(text: &str, lo: f32, hi: f32) -> std::result::Result<f32, String> {
+    let v: f32 = text.parse().map_err(|e| format!("{e}"))?;
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("must be in {lo}..={hi}"))
+    }
+}
+
+fn cone_bias(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 0.0, 16.0)
+}
+
+fn temporal(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 0.01, 1.0)
 }
 
 impl SceneArgs {
@@ -126,6 +151,12 @@ impl SceneArgs {
     fn load(&self) -> Result<Scene> {
         let mut scene = load_scene(self.scene.as_deref())?;
         scene.set_size(self.width, self.height)?;
+        if let Some(b) = self.cone_bias {
+            scene.settings.gi.bias = b;
+        }
+        if let Some(t) = self.temporal {
+            scene.settings.gi.temporal = t;
+        }
         Ok(scene)
     }
 }

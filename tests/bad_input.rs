@@ -125,6 +125,11 @@ fn cli_reports_bad_input_without_panicking() {
     let (code, err) = vct(&["render", d.join("scene.txt").to_str().unwrap()]);
     assert_eq!(code, 1);
     assert!(err.contains("scene.txt"), "{err}");
+    for (flag, value) in [("--temporal", "0"), ("--temporal", "NaN"), ("--cone-bias", "20"), ("--cone-bias", "x")] {
+        let (code, err) = vct(&["render", flag, value, "--out", d.join("w.png").to_str().unwrap()]);
+        assert_eq!(code, 2, "{flag} {value}: {err}");
+        assert!(err.contains(flag), "{flag} {value}: {err}");
+    }
 }
 
 #[test]
