@@ -21,7 +21,8 @@ log="$corpus.log"
 CARGO_TARGET_DIR="$target_dir" cargo fuzz build -s none scene_input
 if ! CARGO_TARGET_DIR="$target_dir" cargo fuzz run -s none scene_input "$corpus" -- \
     -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=10 >"$log" 2>&1; then
-    tail -n 80 "$log"
+    grep -m1 -A3 "panicked" "$log" || true
+    tail -n 30 "$log"
     echo "fuzzer: scene_input crashed; the reproducer is under fuzz/artifacts/scene_input/" >&2
     exit 1
 fi

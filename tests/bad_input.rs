@@ -58,6 +58,14 @@ fn obj_with_out_of_range_indices_names_the_file() {
     assert!(e.contains("oob.obj") && e.contains("out of bounds"), "{e}");
     let p = write(&d, "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n");
     assert!(load_err(&p).contains("neg.obj"));
+    // Relative texture/normal indices before the first element, and huge ones, overflowed
+    // tobj's index arithmetic (a panic, found by the fuzzer).
+    for (name, face) in [("vt.obj", "f 1/-4 2/1 3/1"), ("vn.obj", "f 1//1 2//1 3//-9"), ("big.obj", "f 1 2 4294967296")]
+    {
+        let p = write(&d, name, &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n{face}\n"));
+        let e = load_err(&p);
+        assert!(e.contains(name) && e.contains("line 6") && e.contains("out of range"), "{e}");
+    }
 }
 
 #[test]

@@ -128,9 +128,40 @@ fn sanitize_mtl(text: &str, path: &Path, warnings: &mut Vec<String>) -> String {
     out
 }
 
+/// Finds the first face, line or point index that refers to no element: a relative (negative)
+/// index reaching before the first position, texture coordinate or normal, or one no mesh could
+/// use (>= 2^31). tobj 4 turns such indices into huge offsets and multiplies them unchecked,
+/// which panics (found by the fuzzer). Returns the line number and the index.
+fn bad_index(text: &str) -> Option<(usize, i128)> {
+    let mut counts = [0i128; 3]; // v, vt, vn so far
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => counts[0] += 1,
+            Some("vt") => counts[1] += 1,
+            Some("vn") => counts[2] += 1,
+            Some("f" | "l" | "p") => {
+                for word in words {
+                    for (k, c) in word.split('/').take(3).enumerate() {
+                        let Ok(i) = c.parse::<i128>() else { continue };
+                        if i >= 1 << 31 || (i < 0 && -i > counts[k]) {
+                            return Some((n + 1, i));
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 /// Loads an OBJ (and its MTL and textures) into one indexed mesh with a draw per material.
 pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result<(Mesh, Vec<Material>, Vec<Texture>)> {
     let bytes = read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
+    if let Some((line, index)) = bad_index(&String::from_utf8_lossy(&bytes)) {
+        return Err(Error::input(path, format!("malformed OBJ: index {index} on line {line} is out of range")));
+    }
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let mtl_warnings = std::cell::RefCell::new(Vec::new());
