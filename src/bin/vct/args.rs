@@ -1,0 +1,339 @@
+//! Command-line arguments of `vct` (clap derive): the subcommands, the scene and voxelizer
+//! options shared by `render` and `view`, and the parsers that name a bad flag value.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Result};
+use clap::{Args, Parser, Subcommand};
+
+use vct::render::View;
+use vct::scene::Scene;
+use vct::voxel::{Coverage, VoxelizeMethod};
+
+use crate::load_scene;
+
+#[derive(Parser)]
+#[command(name = "vct", version, about = "Voxel cone tracing global illumination on Vulkan (after Freed 2018)")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Render a scene headlessly to PNG (and optionally linear EXR).
+    Render(RenderArgs),
+    /// Voxelize a scene and measure it against exact triangle/box coverage.
+    Voxelize(VoxelizeArgs),
+    /// Open a window running the full GI frame every frame (H for the keys).
+    View(ViewArgs),
+    /// Path-trace the scene on the CPU: the ground truth for image accuracy.
+    Reference(ReferenceArgs),
+    /// Compare two images: FLIP on the tone-mapped images, RMSE on linear ones (EXR).
+    Compare(CompareArgs),
+    /// Benchmark tess vs raster voxelization: speed and accuracy, CSV/JSON and charts.
+    Bench(BenchArgs),
+    /// List Vulkan devices, their drivers and the features vct uses.
+    Devices,
+}
+
+#[derive(Args)]
+pub struct ReferenceArgs {
+    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    pub scene: Option<PathBuf>,
+    /// Indirect bounces: 0 direct light only, 1 what cone tracing approximates, more for full GI.
+    #[arg(long, default_value_t = 1)]
+    pub bounces: u32,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 64)]
+    pub spp: u32,
+    #[arg(long)]
+    pub width: Option<u32>,
+    #[arg(long)]
+    pub height: Option<u32>,
+    #[arg(long, default_value = "reference.png")]
+    pub out: PathBuf,
+    /// Also write the linear radiance as OpenEXR.
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+}
+
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Extra scenes (.toml or .obj) besides the embedded Cornell box.
+    pub scenes: Vec<PathBuf>,
+    /// A short run for CI: Cornell at 32³ and 64³, 128×128, few frames, a 16-spp reference.
+    #[arg(long)]
+    pub quick: bool,
+    /// Redraw the charts and summary of an earlier run from DIR/results.json.
+    #[arg(long, value_name = "DIR")]
+    pub replot: Option<PathBuf>,
+    /// Measure where each method fails (tessellation limit, raster cracks, small triangles,
+    /// light leaking, temporal flicker, self-illumination) instead of the speed/accuracy sweep.
+    #[arg(long)]
+    pub stability: bool,
+    /// Output folder; default bench/<date>-<device>.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Timed frames per configuration (after the warm-up).
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Reference samples per pixel.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Voxel resolutions, e.g. 64,128,256.
+    #[arg(long, value_delimiter = ',')]
+    pub res: Option<Vec<u32>>,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+#[derive(Args)]
+pub struct CompareArgs {
+    /// Reference image (PNG or EXR).
+    pub reference: PathBuf,
+    /// Test image (PNG or EXR), same size.
+    pub test: PathBuf,
+    /// Write the FLIP error map here.
+    #[arg(long, default_value = "flip.png")]
+    pub out: PathBuf,
+}
+
+/// The scene, image size and voxelization method (shared by `render` and `view`).
+#[derive(Args)]
+pub struct SceneArgs {
+    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    pub scene: Option<PathBuf>,
+    #[arg(long)]
+    pub width: Option<u32>,
+    #[arg(long)]
+    pub height: Option<u32>,
+    #[command(flatten)]
+    pub method: MethodArgs,
+    /// Voxelize a cube of this edge (world units) around the camera instead of the whole scene.
+    #[arg(long, value_name = "EXTENT")]
+    pub follow: Option<f32>,
+    /// With --follow: move the volume continuously instead of in whole voxels.
+    #[arg(long)]
+    pub no_snap: bool,
+    /// Cone start offset along the normal, in voxels (0..=16; overrides the scene's gi.bias;
+    /// too small lets a lit surface light itself).
+    #[arg(long, value_name = "VOXELS", value_parser = cone_bias)]
+    pub cone_bias: Option<f32>,
+    /// Temporal blend factor: this frame's weight against the reprojected previous frames
+    /// (0.01..=1, 1 = off; overrides the scene's gi.temporal).
+    #[arg(long, value_name = "FACTOR", value_parser = temporal)]
+    pub temporal: Option<f32>,
+}
+
+pub fn float_in(text: &str, lo: f32, hi: f32) -> std::result::Result<f32, String> {
+    let v: f32 = text.parse().map_err(|e| format!("{e}"))?;
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("must be in {lo}..={hi}"))
+    }
+}
+
+pub fn cone_bias(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 0.0, 16.0)
+}
+
+pub fn temporal(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 0.01, 1.0)
+}
+
+impl SceneArgs {
+    pub fn follow(&self) -> Option<vct::render::Follow> {
+        self.follow.map(|extent| vct::render::Follow { extent, snap: !self.no_snap })
+    }
+
+    pub fn load(&self) -> Result<Scene> {
+        let mut scene = load_scene(self.scene.as_deref())?;
+        scene.set_size(self.width, self.height)?;
+        if let Some(b) = self.cone_bias {
+            scene.settings.gi.bias = b;
+        }
+        if let Some(t) = self.temporal {
+            scene.settings.gi.temporal = t;
+        }
+        Ok(scene)
+    }
+}
+
+#[derive(Args)]
+pub struct ViewArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Wait for vertical blank (FIFO) or not (MAILBOX/IMMEDIATE where offered).
+    #[arg(long, value_enum, default_value = "on")]
+    pub vsync: OnOff,
+    /// Render this many frames, then exit (automation and tests).
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Save the last frame to this PNG on exit.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Resize the window to WxH a third of the way through --frames.
+    #[arg(long, value_parser = parse_size)]
+    pub resize_to: Option<(u32, u32)>,
+    /// Soak test: move camera and light, switch voxelizer and resolution on a schedule, and
+    /// compare GPU and host memory at frame 180 and 540 (use --frames 541 or more).
+    #[arg(long)]
+    pub soak: bool,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OnOff {
+    On,
+    Off,
+}
+
+pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let (w, h) = s.split_once('x').ok_or_else(|| format!("expected WxH, got '{s}'"))?;
+    let parse = |v: &str| v.parse::<u32>().map_err(|_| format!("bad size '{s}'"));
+    let (w, h) = (parse(w)?, parse(h)?);
+    vct::scene::check_image_size(w, h).map_err(|e| e.to_string())?;
+    Ok((w, h))
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum VoxelizerArg {
+    Tess,
+    Raster,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FilterArg {
+    Iso,
+    Aniso,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TracingArg {
+    Forward,
+    Deferred,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CoverageArg {
+    Msaa,
+    None,
+    Hw,
+}
+
+/// How to voxelize (shared by every command that voxelizes).
+#[derive(Args)]
+pub struct MethodArgs {
+    /// Voxelization method.
+    #[arg(long, value_enum, default_value = "tess")]
+    pub voxelizer: VoxelizerArg,
+    /// Rasterized path: conservative coverage by 4x MSAA, none, or hardware (VK_EXT_conservative_rasterization).
+    #[arg(long, value_enum, default_value = "msaa")]
+    pub coverage: CoverageArg,
+    /// Voxel grid resolution N (N³ voxels, 16..512); default: the scene's.
+    #[arg(long)]
+    pub res: Option<u32>,
+    /// Tessellation path: multiplier on the thesis' tessellation levels.
+    #[arg(long, default_value_t = vct::voxel::DEFAULT_LEVEL_SCALE)]
+    pub level_scale: f32,
+    /// Tessellation path: do not split triangles past the level limit (shows the holes).
+    #[arg(long)]
+    pub no_subdivide: bool,
+    /// Tessellation path: let levels below 1 drop the triangle (shows the lost small triangles).
+    #[arg(long)]
+    pub no_min_level: bool,
+    /// Rasterized path: framebuffer resolution over voxel resolution.
+    #[arg(long, default_value_t = 1.0)]
+    pub viewport_scale: f32,
+    /// Rasterized path: write only the voxel at each pixel centre's depth (the thesis' method).
+    #[arg(long)]
+    pub no_depth_span: bool,
+}
+
+impl MethodArgs {
+    pub fn method(&self) -> Result<VoxelizeMethod> {
+        if !(self.level_scale.is_finite() && self.level_scale > 0.0 && self.level_scale <= 16.0) {
+            bail!("--level-scale must be in (0, 16], got {}", self.level_scale);
+        }
+        if !(self.viewport_scale.is_finite() && (0.125..=8.0).contains(&self.viewport_scale)) {
+            bail!("--viewport-scale must be in 0.125..=8, got {}", self.viewport_scale);
+        }
+        Ok(match self.voxelizer {
+            VoxelizerArg::Tess => VoxelizeMethod::Tess {
+                level_scale: self.level_scale,
+                subdivide: !self.no_subdivide,
+                min_level: !self.no_min_level,
+            },
+            VoxelizerArg::Raster => VoxelizeMethod::Raster {
+                coverage: match self.coverage {
+                    CoverageArg::Msaa => Coverage::Msaa,
+                    CoverageArg::None => Coverage::None,
+                    CoverageArg::Hw => Coverage::Hardware,
+                },
+                viewport_scale: self.viewport_scale,
+                depth_span: !self.no_depth_span,
+            },
+        })
+    }
+}
+
+#[derive(Args)]
+pub struct VoxelizeArgs {
+    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub method: MethodArgs,
+    /// Write the occupancy as a .binvox file.
+    #[arg(long)]
+    pub export: Option<PathBuf>,
+    /// Render the voxels as shaded cubes from the scene camera to this PNG.
+    #[arg(long)]
+    pub view: Option<PathBuf>,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+#[derive(Args)]
+pub struct GpuArgs {
+    /// Use the first device whose name contains this text.
+    #[arg(long)]
+    pub device: Option<String>,
+    /// Enable the Khronos validation layer (also: VCT_VALIDATION=1); messages fail the run.
+    #[arg(long)]
+    pub validation: bool,
+}
+
+#[derive(Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output PNG (tone-mapped).
+    #[arg(long, default_value = "vct.png")]
+    pub out: PathBuf,
+    /// Also write the linear radiance as OpenEXR.
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+    /// What to show: full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL.
+    #[arg(long, default_value = "full")]
+    pub view: View,
+    /// Direct light only: skip cone tracing.
+    #[arg(long)]
+    pub no_gi: bool,
+    /// Radiance mip filtering: the thesis' isotropic 8-child average, or six directional chains.
+    #[arg(long, value_enum, default_value = "iso")]
+    pub filter: FilterArg,
+    /// Where cone tracing runs: a fragment shader after a depth prepass, or compute over a G-buffer.
+    #[arg(long, value_enum, default_value = "deferred")]
+    pub tracing: TracingArg,
+    /// Write the per-pass GPU times as JSON.
+    #[arg(long)]
+    pub timings: Option<PathBuf>,
+    /// Render this many frames and report each pass's median GPU time (the last frame is saved).
+    #[arg(long, default_value_t = 1)]
+    pub frames: u32,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
