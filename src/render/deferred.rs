@@ -11,7 +11,6 @@ use super::radiance::RadianceVolume;
 use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::shadow::ShadowPass;
 use super::Targets;
-use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{
     self, scope, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage,
@@ -170,18 +169,10 @@ impl DeferredShadePass {
     /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL).
     pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &targets.hdr,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::GENERAL,
-            scope::COMPUTE_RW,
-            scope::COMPUTE_RW,
-        );
+        targets.hdr_for_compute(ctx, cmd);
         self.shade_pipeline.bind(cmd, &[scene.set.raw]);
         self.shade_pipeline.bind_set(cmd, 2, self.set.raw);
-        gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+        targets.dispatch_per_pixel(ctx, cmd);
         gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
     }
 }

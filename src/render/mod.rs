@@ -53,6 +53,18 @@ impl Targets {
     pub const HDR_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
     pub const LDR_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 
+    /// Discards `hdr` and leaves it in GENERAL for a compute pass that writes every pixel.
+    pub fn hdr_for_compute(&self, ctx: &Context, cmd: vk::CommandBuffer) {
+        let rw = gpu::scope::COMPUTE_RW;
+        gpu::image_barrier(ctx, cmd, &self.hdr, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+    }
+
+    /// Dispatches one compute thread per pixel (2D workgroups of WORKGROUP_2D²).
+    pub fn dispatch_per_pixel(&self, ctx: &Context, cmd: vk::CommandBuffer) {
+        let local = crate::config::WORKGROUP_2D;
+        gpu::dispatch(ctx, cmd, [self.width, self.height, 1], [local, local, 1]);
+    }
+
     pub fn new(ctx: &Arc<Context>, width: u32, height: u32) -> Result<Self> {
         let u = vk::ImageUsageFlags::TRANSFER_SRC;
         Ok(Targets {

@@ -6,7 +6,6 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::Targets;
-use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
 
@@ -51,7 +50,7 @@ impl TonemapPass {
         );
         self.pipeline.bind(cmd, &[self.set.raw]);
         self.pipeline.push(cmd, &(raw as u32));
-        gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+        targets.dispatch_per_pixel(ctx, cmd);
         gpu::memory_barrier(ctx, cmd, scope::COMPUTE_WRITE, rw);
     }
 }

@@ -9,7 +9,6 @@ use ash::vk;
 use super::radiance::RadianceVolume;
 use super::scene_gpu::SceneGpu;
 use super::Targets;
-use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
 use crate::voxel::VoxelVolume;
@@ -53,17 +52,9 @@ impl VolumeViewPass {
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &targets.hdr,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::GENERAL,
-            scope::COMPUTE_RW,
-            scope::COMPUTE_RW,
-        );
+        targets.hdr_for_compute(ctx, cmd);
         self.pipeline.bind(cmd, &[scene.set.raw, self.set.raw]);
-        gpu::dispatch(ctx, cmd, [targets.width, targets.height, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+        targets.dispatch_per_pixel(ctx, cmd);
         gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
     }
 }
