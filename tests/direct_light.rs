@@ -26,7 +26,7 @@ fn render_default() -> (Scene, FrameImages, std::sync::Arc<vct::gpu::Context>) {
 
 /// Reflected radiance of a Lambertian point lit by the spot light, from first principles.
 fn analytic_radiance(scene: &Scene, p: Vec3, n: Vec3, albedo: Vec3) -> Vec3 {
-    let Light::Spot { position, direction, intensity, inner_deg, outer_deg } = scene.light else {
+    let Light::Spot { position, direction, intensity, inner_deg, outer_deg } = scene.lights[0] else {
         panic!("default scene has a spot light")
     };
     let to_light = position - p;
@@ -38,7 +38,7 @@ fn analytic_radiance(scene: &Scene, p: Vec3, n: Vec3, albedo: Vec3) -> Vec3 {
 }
 
 fn lit(scene: &Scene, p: Vec3) -> bool {
-    let Light::Spot { position, .. } = scene.light else { unreachable!() };
+    let Light::Spot { position, .. } = scene.lights[0] else { unreachable!() };
     let d = position - p;
     common::raycast(scene, p, d.normalize(), d.length() - 1e-3).is_none()
 }

@@ -72,9 +72,9 @@ fn every_mip_level_is_the_box_filter_of_the_level_below() {
 #[test]
 fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
     let ctx = common::context();
-    let mut o = options(View::Full, 16);
-    o.anisotropic = true;
-    let r = Renderer::new(&ctx, Scene::embedded_default().unwrap(), o).unwrap();
+    let mut scene = Scene::embedded_default().unwrap();
+    scene.settings.gi.filter = vct::scene::file::Filter::Aniso;
+    let r = Renderer::new(&ctx, scene, options(View::Full, 16)).unwrap();
     r.render().unwrap();
     let base = f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
     let sides: Vec<u32> = bytemuck::pod_collect_to_vec(
@@ -95,8 +95,17 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
         (t.truncate() * (1.0 - 4.0 * n.dot(dir)).clamp(0.0, 1.0)).extend(t.w)
     };
     let mut hidden = 0;
-    for (d, chain) in r.radiance.aniso.iter().enumerate() {
-        let got = f16s(&gpu::read_image(&ctx, chain, vk::ImageLayout::GENERAL, 0).unwrap());
+    // The six chains share one atlas, stacked along y with an empty block between them.
+    let atlas = f16s(&gpu::read_image(&ctx, &r.radiance.aniso, vk::ImageLayout::GENERAL, 0).unwrap());
+    let rows = 8 * vct::config::ANISO_BLOCKS as usize;
+    for d in 0..6 {
+        let got: Vec<f32> = (0..8)
+            .flat_map(|z| (0..8).map(move |y| (z, y)))
+            .flat_map(|(z, y)| {
+                let start = 4 * 8 * ((2 * d * 8 + y) + rows * z);
+                atlas[start..start + 32].to_vec()
+            })
+            .collect();
         let axis = d / 2;
         let positive = d % 2 == 0;
         let mut dir = Vec3::ZERO;
@@ -129,6 +138,15 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
             }
         }
         assert!(nonzero > 20, "direction {d}: the volume is nearly empty");
+    }
+    // The blocks between the chains stay empty: trilinear filtering meets zeros at a chain's edge.
+    for gap in [1usize, 3, 5, 7, 9] {
+        let ys = gap * 8..gap * 8 + 8;
+        let dirty = (0..8).flat_map(|z| ys.clone().map(move |y| (z, y))).any(|(z, y)| {
+            let start = 4 * 8 * (y + rows * z);
+            atlas[start..start + 32].iter().any(|&v| v != 0.0)
+        });
+        assert!(!dirty, "gap block {gap} of the directional atlas was written");
     }
     assert!(hidden > 100, "lit faces seen from behind should be dark ({hidden} children hidden)");
     drop(r);
@@ -195,6 +213,8 @@ struct ProbePush {
     start: f32,
     lod_offset: f32,
     resolution: f32,
+    step: f32,
+    flags: u32,
     count: u32,
 }
 
@@ -220,87 +240,113 @@ fn gpu_cone_tracing_agrees_with_the_cpu_model() {
         .collect();
     gpu::upload_levels(&ctx, &image, &data, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL).unwrap();
 
-    let params = ConeParams { steps: 64, bias: 1.0, start: 1.0, lod_offset: 0.0 };
-    let mut probes = Vec::new();
-    for (start, dir, aperture) in [
-        (Vec3::new(0.2, 0.5, 0.5), Vec3::X, 0.785),
-        (Vec3::new(0.2, 0.5, 0.5), Vec3::new(1.0, 0.3, 0.1), 0.3),
-        (Vec3::new(0.1, 0.3, 0.7), Vec3::new(1.0, 0.2, -0.3), 0.05),
-        (Vec3::new(0.3, 0.2, 0.4), Vec3::new(-0.2, 1.0, 0.3), 0.785),
-        (Vec3::new(0.5, 0.9, 0.2), Vec3::new(0.4, -0.6, 0.5), 1.2),
-        (Vec3::new(0.95, 0.5, 0.5), -Vec3::X, 0.6),
-        (Vec3::new(0.5, 0.5, 0.05), Vec3::Z, 0.785),
-        (Vec3::new(0.4, 0.6, 0.4), Vec3::new(-1.0, 1.0, 0.5), 0.2),
-    ] {
-        let dir = dir.normalize();
-        probes.push(Probe {
-            uvw_aperture: start.extend(aperture).into(),
-            normal: dir.extend(0.0).into(),
-            dir: dir.extend(0.0).into(),
-        });
-    }
-    let probe_buf = Buffer::from_slice(&ctx, "probes", vk::BufferUsageFlags::STORAGE_BUFFER, &probes).unwrap();
-    let results = Buffer::new(
-        &ctx,
-        "probe results",
-        16 * probes.len() as u64,
-        vk::BufferUsageFlags::STORAGE_BUFFER,
-        MemoryLocation::GpuToCpu,
-    )
-    .unwrap();
-    let sampler = Sampler::linear_border(&ctx, "probe sampler").unwrap();
-    let c = vk::ShaderStageFlags::COMPUTE;
-    let set = DescriptorSet::new(
-        &ctx,
-        "probe",
-        &[
-            Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
-            Binding::new(1, vk::DescriptorType::STORAGE_BUFFER, c),
-            Binding::new(2, vk::DescriptorType::STORAGE_BUFFER, c),
-        ],
-    )
-    .unwrap();
-    set.write_sampled(0, image.view.raw, sampler.raw);
-    set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &probe_buf);
-    set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &results);
-    let pipeline =
-        Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 24).unwrap();
-    let push = ProbePush {
-        steps: params.steps,
-        bias: params.bias,
-        start: params.start,
-        lod_offset: params.lod_offset,
-        resolution: 16.0,
-        count: probes.len() as u32,
-    };
-    ctx.submit_and_wait("cone probes", |cmd| {
-        pipeline.bind(cmd, &[set.raw]);
-        pipeline.push(cmd, &push);
-        gpu::dispatch(&ctx, cmd, [probes.len() as u32, 1, 1], [vct::config::WORKGROUP_1D, 1, 1]);
-        gpu::memory_barrier(
+    let configs = [
+        ConeParams {
+            steps: 64,
+            bias: 1.0,
+            start: 1.0,
+            lod_offset: 0.0,
+            step: 0.5,
+            opacity_correction: false,
+            self_clamp: false,
+        },
+        ConeParams {
+            steps: 64,
+            bias: 1.5,
+            start: 1.0,
+            lod_offset: -0.79,
+            step: 0.3,
+            opacity_correction: true,
+            self_clamp: true,
+        },
+    ];
+    for params in configs {
+        let mut probes = Vec::new();
+        for (start, dir, aperture) in [
+            (Vec3::new(0.2, 0.5, 0.5), Vec3::X, 0.785),
+            (Vec3::new(0.2, 0.5, 0.5), Vec3::new(1.0, 0.3, 0.1), 0.3),
+            (Vec3::new(0.1, 0.3, 0.7), Vec3::new(1.0, 0.2, -0.3), 0.05),
+            (Vec3::new(0.3, 0.2, 0.4), Vec3::new(-0.2, 1.0, 0.3), 0.785),
+            (Vec3::new(0.5, 0.9, 0.2), Vec3::new(0.4, -0.6, 0.5), 1.2),
+            (Vec3::new(0.95, 0.5, 0.5), -Vec3::X, 0.6),
+            (Vec3::new(0.5, 0.5, 0.05), Vec3::Z, 0.785),
+            (Vec3::new(0.4, 0.6, 0.4), Vec3::new(-1.0, 1.0, 0.5), 0.2),
+        ] {
+            let dir = dir.normalize();
+            probes.push(Probe {
+                uvw_aperture: start.extend((0.5f32 * aperture).tan()).into(),
+                normal: dir.extend(0.0).into(),
+                dir: dir.extend(0.0).into(),
+            });
+        }
+        let probe_buf = Buffer::from_slice(&ctx, "probes", vk::BufferUsageFlags::STORAGE_BUFFER, &probes).unwrap();
+        let results = Buffer::new(
             &ctx,
-            cmd,
-            (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE),
-            (vk::PipelineStageFlags2::HOST, vk::AccessFlags2::HOST_READ),
-        );
-    })
-    .unwrap();
-    let gpu_out: &[Vec4] = bytemuck::cast_slice(results.read());
-    let mut lit = 0;
-    for (p, g) in probes.iter().zip(gpu_out) {
-        let uvw = Vec4::from(p.uvw_aperture);
-        let cpu = volume.trace_cone(
-            uvw.truncate(),
-            Vec4::from(p.normal).truncate(),
-            Vec4::from(p.dir).truncate(),
-            uvw.w,
-            params,
-        );
-        let err = (*g - cpu).abs().max_element();
-        assert!(err <= 0.01 + 0.01 * cpu.abs().max_element(), "probe {p:?}: GPU {g} vs CPU {cpu}");
-        lit += (cpu.x > 0.1) as usize;
+            "probe results",
+            16 * probes.len() as u64,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            MemoryLocation::GpuToCpu,
+        )
+        .unwrap();
+        let sampler = Sampler::linear_border(&ctx, "probe sampler").unwrap();
+        let c = vk::ShaderStageFlags::COMPUTE;
+        let set = DescriptorSet::new(
+            &ctx,
+            "probe",
+            &[
+                Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
+                Binding::new(1, vk::DescriptorType::STORAGE_BUFFER, c),
+                Binding::new(2, vk::DescriptorType::STORAGE_BUFFER, c),
+            ],
+        )
+        .unwrap();
+        set.write_sampled(0, image.view.raw, sampler.raw);
+        set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &probe_buf);
+        set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &results);
+        let pipeline =
+            Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 32)
+                .unwrap();
+        let flags = (vct::config::CONE_FLAG_OPACITY_CORRECTION * params.opacity_correction as u32)
+            | (vct::config::CONE_FLAG_SELF_CLAMP * params.self_clamp as u32);
+        let push = ProbePush {
+            steps: params.steps,
+            bias: params.bias,
+            start: params.start,
+            lod_offset: params.lod_offset,
+            resolution: 16.0,
+            step: params.step,
+            flags,
+            count: probes.len() as u32,
+        };
+        ctx.submit_and_wait("cone probes", |cmd| {
+            pipeline.bind(cmd, &[set.raw]);
+            pipeline.push(cmd, &push);
+            gpu::dispatch(&ctx, cmd, [probes.len() as u32, 1, 1], [vct::config::WORKGROUP_1D, 1, 1]);
+            gpu::memory_barrier(
+                &ctx,
+                cmd,
+                (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE),
+                (vk::PipelineStageFlags2::HOST, vk::AccessFlags2::HOST_READ),
+            );
+        })
+        .unwrap();
+        let gpu_out: &[Vec4] = bytemuck::cast_slice(results.read());
+        let mut lit = 0;
+        for (p, g) in probes.iter().zip(gpu_out) {
+            let uvw = Vec4::from(p.uvw_aperture);
+            let cpu = volume.trace_cone(
+                uvw.truncate(),
+                Vec4::from(p.normal).truncate(),
+                Vec4::from(p.dir).truncate(),
+                uvw.w,
+                params,
+            );
+            let err = (*g - cpu).abs().max_element();
+            assert!(err <= 0.01 + 0.01 * cpu.abs().max_element(), "probe {p:?}: GPU {g} vs CPU {cpu}");
+            lit += (cpu.x > 0.1) as usize;
+        }
+        assert!(lit >= 3, "too few probes see the emissive slab for the comparison to mean much");
     }
-    assert!(lit >= 3, "too few probes see the emissive slab for the comparison to mean much");
     common::assert_clean(&ctx);
 }
 
@@ -340,19 +386,20 @@ fn cornell_box_shows_colour_bleeding_a_lit_ceiling_and_occlusion() {
     println!("ceiling full {cf}, direct {cd}");
     assert!(cd.max_element() < 1e-4, "direct light on the ceiling: {cd}");
     assert!(cf.min_element() > 0.01, "ceiling not lit by indirect light: {cf}");
-    // Ambient occlusion: darker along the room's edges than mid-wall.
+    // Ambient occlusion: darker along the room's edges than mid-wall. The cones run until they
+    // end opaque, so in a closed room the open fraction is small everywhere: compare ratios.
     let mid = around(&scene, &ao, Vec3::new(1.2, 3.5, -2.75)).x;
-    for corner in [Vec3::new(0.0, 5.45, -2.7), Vec3::new(-2.7, 0.05, 2.0)] {
+    for corner in [Vec3::new(0.0, 5.45, -2.7), Vec3::new(-2.7, 0.05, -1.5)] {
         let c = around(&scene, &ao, corner).x;
         println!("AO at edge {corner}: {c}, mid-wall {mid}");
-        assert!(c < mid - 0.1, "edge AO {c} vs mid-wall {mid}");
+        assert!(c < 0.8 * mid, "edge AO {c} vs mid-wall {mid}");
     }
 }
 
 #[test]
 fn no_light_no_emission_means_black_and_emission_lights_only_its_own_colour() {
     let mut scene = Scene::embedded_default().unwrap();
-    scene.light = scene.light.scaled(0.0);
+    scene.lights.clear();
     let black = render(scene.clone(), options(View::Full, 32));
     let max = black.hdr.chunks_exact(4).map(|p| p[0].max(p[1]).max(p[2])).fold(0.0f32, f32::max);
     assert!(max < 1e-6, "light from nowhere: max radiance {max}");
@@ -385,7 +432,9 @@ fn tessellated_and_rasterized_voxels_give_nearly_the_same_image() {
     sorted.sort_by(f32::total_cmp);
     let p99 = sorted[sorted.len() * 99 / 100];
     println!("tess vs raster: mean |ΔLDR| {mean:.3}, 99th percentile {p99}");
-    assert!(mean < 1.5 && p99 <= 12.0, "mean {mean}, p99 {p99}");
+    // The footprint level rule samples a level finer than the thesis' diameter rule, so the
+    // voxelizers' sub-voxel differences show a little more (mean 1.67 measured, 64³).
+    assert!(mean < 2.0 && p99 <= 12.0, "mean {mean}, p99 {p99}");
 }
 
 #[test]

@@ -30,8 +30,10 @@ fn lit_plane_has_the_analytic_radiance() {
         Vec3::new(-10.0, 0.0, 10.0),
     ];
     let mut scene = Scene::from_triangles(&[([q[0], q[2], q[1]], 0), ([q[0], q[3], q[2]], 0)], &[Vec3::splat(0.5)]);
-    scene.light =
-        Light::Directional { direction: Vec3::new(0.3, -1.0, 0.2).normalize(), irradiance: Vec3::new(2.0, 1.0, 0.5) };
+    scene.lights = vec![Light::Directional {
+        direction: Vec3::new(0.3, -1.0, 0.2).normalize(),
+        irradiance: Vec3::new(2.0, 1.0, 0.5),
+    }];
     scene.camera = camera(Vec3::new(0.0, 3.0, 0.5), Vec3::ZERO, 16);
     let cos = Vec3::new(0.3, -1.0, 0.2).normalize().y.abs();
     let want = Vec3::splat(0.5) / std::f32::consts::PI * Vec3::new(2.0, 1.0, 0.5) * cos;
@@ -64,7 +66,7 @@ fn furnace(rho: f32) -> Scene {
         faces.iter().flat_map(|f| [([v[f[0]], v[f[1]], v[f[2]]], 0), ([v[f[0]], v[f[2]], v[f[3]]], 0)]).collect();
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(rho)]);
     scene.materials[0].emissive = Vec3::ONE;
-    scene.light = scene.light.scaled(0.0);
+    scene.lights.clear();
     scene.camera = camera(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.5, -0.4, -0.9), 12);
     scene
 }
@@ -76,20 +78,24 @@ fn white_furnace_converges_to_the_geometric_series() {
     for bounces in [0u32, 1, 2, 8, 30] {
         // Every path sees emission 1 at each of its bounces + 1 vertices, scaled by rho^k.
         let want = (1.0 - rho.powi(bounces as i32 + 1)) / (1.0 - rho);
-        let img = trace(&scene, bounces, 8);
+        // Light sampling with multiple importance makes each path's estimate noisy (BSDF
+        // sampling alone would give every path exactly `want`), so the image mean is held to
+        // the noise of 9216 paths and each pixel to that of 64.
+        let img = trace(&scene, bounces, 64);
+        let mean = img.radiance.iter().map(|p| p.x).sum::<f32>() / img.radiance.len() as f32;
+        println!("{bounces} bounces: mean {mean} vs {want}");
+        assert!((mean - want).abs() < 0.01 * want, "{bounces} bounces: mean {mean} vs {want}");
         for p in &img.radiance {
-            assert!((p.x - want).abs() < 1e-3 && (p.z - want).abs() < 1e-3, "{bounces} bounces: {p} vs {want}");
+            assert!((p.x - want).abs() < 0.08 * want && (p.x - p.z).abs() < 1e-4, "{bounces} bounces: {p} vs {want}");
         }
     }
-    let img = trace(&scene, 30, 8);
-    assert!((img.radiance[0].x - 1.0 / (1.0 - rho)).abs() < 1e-3, "does not converge to Le/(1-rho)");
 }
 
 #[test]
 fn spot_lit_cornell_floor_matches_the_analytic_direct_light() {
     let scene = Scene::embedded_default().unwrap();
     let img = trace(&scene, 0, 1);
-    let Light::Spot { position, direction, intensity, inner_deg, outer_deg } = scene.light else { panic!() };
+    let Light::Spot { position, direction, intensity, inner_deg, outer_deg } = scene.lights[0] else { panic!() };
     let mut checked = 0;
     for y in (0..scene.camera.height).step_by(3) {
         for x in (0..scene.camera.width).step_by(3) {

@@ -3,7 +3,8 @@
 
 mod common;
 
-use vct::bench::stability::{raster_cracks, self_illumination_ratio, subvoxel_triangles};
+use vct::bench::stability::{leak, raster_cracks, self_illumination_ratio, subvoxel_triangles};
+use vct::scene::file::GiFile;
 
 #[test]
 fn raster_cracks_appear_below_one_pixel_per_voxel() {
@@ -38,12 +39,17 @@ fn small_triangles_are_dropped_by_sampling_but_not_by_tessellation() {
 #[test]
 fn a_lit_plane_lights_itself_without_the_cone_offset() {
     let ctx = common::context();
-    let off = self_illumination_ratio(&ctx, 0.0, 32).unwrap();
-    let default = self_illumination_ratio(&ctx, 1.5, 32).unwrap();
-    let far = self_illumination_ratio(&ctx, 3.0, 32).unwrap();
-    println!("indirect/direct on a lone plane (truth 0): offset 0 → {off:.4}, 1.5 → {default:.4}, 3 → {far:.4}");
+    let thesis = GiFile::thesis();
+    let off = self_illumination_ratio(&ctx, &thesis, 0.0, 32).unwrap();
+    let default = self_illumination_ratio(&ctx, &thesis, 1.5, 32).unwrap();
+    let far = self_illumination_ratio(&ctx, &thesis, 3.0, 32).unwrap();
+    println!("indirect/direct on a lone plane (truth 0), thesis' cones: offset 0 → {off:.4}, 1.5 → {default:.4}, 3 → {far:.4}");
     assert!(off > 0.3, "no self-illumination without the offset? {off}");
     assert!(default < off / 2.0 && far < off / 8.0, "the offset does not remove it: {off} → {default} → {far}");
+    // The default model's self clamp removes it even without the offset.
+    let clamped = self_illumination_ratio(&ctx, &GiFile::default(), 0.0, 32).unwrap();
+    println!("default model, offset 0 → {clamped:.4}");
+    assert!(clamped < off / 8.0, "the self clamp does not remove it: {clamped} vs {off}");
     common::assert_clean(&ctx);
 }
 
@@ -64,8 +70,9 @@ fn snapping_and_temporal_filtering_calm_a_sliding_volume() {
 #[test]
 fn a_voxel_on_each_side_of_a_thin_wall_cuts_the_leak() {
     let ctx = common::context();
-    let thesis = vct::bench::stability::leak(&ctx, false, false, 16).unwrap();
-    let fixed = vct::bench::stability::leak(&ctx, true, false, 16).unwrap();
+    let gi = GiFile::thesis();
+    let thesis = leak(&ctx, &gi, false, false, 16).unwrap();
+    let fixed = leak(&ctx, &gi, true, false, 16).unwrap();
     println!(
         "mean radiance in the dark room (truth 0), 16³: one voxel per fragment {thesis:.4}, both sides {fixed:.4}"
     );
@@ -77,11 +84,14 @@ fn a_voxel_on_each_side_of_a_thin_wall_cuts_the_leak() {
 #[test]
 fn anisotropic_voxels_cut_the_remaining_leak() {
     let ctx = common::context();
-    let iso = vct::bench::stability::leak(&ctx, true, false, 64).unwrap();
-    let aniso = vct::bench::stability::leak(&ctx, true, true, 64).unwrap();
-    println!("mean radiance in the dark room (truth 0), 64³, a voxel on each side: isotropic {iso:.4}, anisotropic {aniso:.4}");
+    let gi = GiFile::thesis();
+    let iso = leak(&ctx, &gi, true, false, 64).unwrap();
+    let aniso = leak(&ctx, &gi, true, true, 64).unwrap();
+    let default = leak(&ctx, &GiFile::default(), true, true, 64).unwrap();
+    println!("mean radiance in the dark room (truth 0), 64³, a voxel on each side: isotropic {iso:.4}, anisotropic {aniso:.4}, default model {default:.4}");
     assert!(iso > 0.01, "isotropic mips should still leak through the wall: {iso}");
     assert!(aniso < 0.7 * iso, "anisotropic voxels should cut the leak: {aniso} vs {iso}");
+    assert!(default <= aniso * 1.1, "the default model leaks more than anisotropic voxels: {default} vs {aniso}");
     common::assert_clean(&ctx);
 }
 

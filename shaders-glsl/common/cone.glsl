@@ -1,64 +1,203 @@
-// Voxel cone tracing (Freed 2018 §4.5.2, Listing 4.1): front-to-back accumulation of the
-// pre-filtered radiance volume along a cone, sampling the mip level whose voxels match the
-// cone's diameter. Heights are in voxels of level 0. One deviation from the listing: each step
-// advances at least half a voxel, so narrow (specular) cones still reach past their start.
+// Voxel cone tracing (Freed 2018 §4.5.2, Listing 4.1; Crassin et al. 2011 §4): front-to-back
+// accumulation of the pre-filtered radiance volume along a cone. Distances are in voxels of
+// level 0. Three choices are parameters, each measured in docs/benchmarks.md (the study):
+// - the sampled level: log2 of the cone diameter plus an offset (the level rule's and the
+//   user's), and, with CONE_FLAG_SELF_CLAMP, no coarser than keeps the trilinear filter's
+//   support off the receiving surface's own voxels;
+// - the step: a fraction of the sampled level's texel (Listing 4.1 steps by the cone's radius,
+//   half its diameter, with texels as wide as the cone: 0.5). Two samples a texel keep a wall one
+//   texel thick opaque: trilinear filtering spreads its opacity over two texels, and fewer samples
+//   of that spread let a cone through it (an emissive closed box then gathered 11% too little);
+// - with CONE_FLAG_OPACITY_CORRECTION, each sample's opacity corrected for the step length
+//   against the voxel size of its level (Crassin et al. 2011: a' = 1 - (1 - a)^(step/voxel)),
+//   its radiance scaled alike (premultiplied). Measured, it loses more than it mends: trilinear
+//   filtering makes a tent of an opaque one-texel wall, and corrected tents let cones through
+//   walls (an emissive closed box gathered 16% too little); uncorrected, two samples a texel
+//   count a texel's partial cover more than once (a small emitter lights the floor below it up
+//   to twice too brightly). Off by default;
+// - with CONE_FLAG_FACING, a sample's light is hidden by the share of it that leaves its surfaces
+//   away from the cone: the radiance moment volume holds, per texel, the luminance-weighted sum of
+//   the lit sides' normals and the luminance, and light that all leaves into one hemisphere
+//   (moment length equal to the luminance) cannot reach a cone behind that hemisphere. This is
+//   what keeps the lit outside of a thin wall from shining into the room through the
+//   directional chains that see the wall edge-on (`facing_across`).
+// A cone ends when 95% opaque or when it leaves the volume.
 #ifndef VCT_CONE_GLSL
 #define VCT_CONE_GLSL
+#include "config.h"
 
 struct ConeParams {
     int steps;         // maximum samples
     float bias;        // start offset along the surface normal (voxels)
-    float start;       // initial cone height (voxels)
-    float lod_offset;  // added to the sampled level
+    float start;       // initial distance along the cone (voxels)
+    float lod_offset;  // added to log2(diameter)
     float resolution;  // N
+    float step;        // step length over the sampled level's texel size
+    uint flags;        // CONE_FLAG_*
+    float surface;     // how far the receiving surface's own voxels may reach above the start's
+                       // plane (voxels): half a voxel for a point on the surface
 };
 
-// Anisotropic sample (Crassin et al. 2011): the three directional volumes facing the cone,
-// weighted by the squared direction components. The directional chains start at level 1;
-// between levels 0 and 1 the isotropic level 0 is blended in.
-vec4 sample_aniso(sampler3D iso, sampler3D px, sampler3D nx, sampler3D py, sampler3D ny, sampler3D pz, sampler3D nz,
-                  vec3 pos, vec3 dir, float lod) {
-    float l = max(lod - 1.0, 0.0);
-    vec3 w = dir * dir;
-    // Branches, not ?: selects, so only the three facing volumes are sampled.
-    vec4 a;
-    if (dir.x >= 0.0) a = w.x * textureLod(px, pos, l); else a = w.x * textureLod(nx, pos, l);
-    if (dir.y >= 0.0) a += w.y * textureLod(py, pos, l); else a += w.y * textureLod(ny, pos, l);
-    if (dir.z >= 0.0) a += w.z * textureLod(pz, pos, l); else a += w.z * textureLod(nz, pos, l);
-    if (lod < 1.0) a = mix(textureLod(iso, pos, 0.0), a, lod);
-    return a;
+// Anisotropic sample (Crassin et al. 2011): the three directional chains facing the cone, weighted
+// by the squared direction components `w`; `block` holds each axis's chain (its block in the
+// atlas, ANISO_BLOCKS high). The chains start at level 1 (their mip 0). `face` holds, per axis,
+// the share of that chain's light that can reach the cone (see `facing_across`).
+vec4 sample_chains(sampler3D atlas, vec3 pos, vec3 w, vec3 block, float lod, vec3 face) {
+    float l = lod - 1.0;
+    vec3 y = (pos.y + block) / float(ANISO_BLOCKS);
+    vec4 x = textureLod(atlas, vec3(pos.x, y.x, pos.z), l);
+    vec4 yy = textureLod(atlas, vec3(pos.x, y.y, pos.z), l);
+    vec4 z = textureLod(atlas, vec3(pos.x, y.z, pos.z), l);
+    vec3 wf = w * face;
+    return vec4(wf.x * x.rgb + wf.y * yy.rgb + wf.z * z.rgb, w.x * x.a + w.y * yy.a + w.z * z.a);
 }
 
-// Returns accumulated radiance (rgb, premultiplied) and opacity (a). With `aniso` the six
-// directional volumes are sampled; otherwise only the isotropic `volume` (the thesis).
-vec4 trace_cone_filtered(sampler3D volume, sampler3D px, sampler3D nx, sampler3D py, sampler3D ny, sampler3D pz,
-                         sampler3D nz, bool aniso, vec3 uvw, vec3 normal, vec3 dir, float aperture, ConeParams p) {
-    float scale = 1.0 / p.resolution;
-    vec3 start = uvw + p.bias * normal * scale;
-    float height = p.start;
-    float tan_half = tan(aperture * 0.5);
-    vec3 color = vec3(0.0);
-    float alpha = 0.0;
-    for (int i = 0; i < p.steps && alpha < 0.95; i++) {
-        float radius = height * tan_half;
-        float lod = log2(max(1.0, 2.0 * radius));
-        vec3 pos = start + height * dir * scale;
-        if (any(lessThan(pos, vec3(0.0))) || any(greaterThan(pos, vec3(1.0)))) break;
-        float l = max(lod + p.lod_offset, 0.0);
-        vec4 s;
-        if (aniso) s = sample_aniso(volume, px, nx, py, ny, pz, nz, pos, dir, l);
-        else s = textureLod(volume, pos, l);
-        float a = 1.0 - alpha;
-        color += s.rgb * a;
-        alpha += a * s.a;
-        height += max(radius, 0.5);
+// The level whose trilinear filter stays off the receiving surface, for a sample `height`
+// voxels above its plane, the surface's own voxels reaching `surface` voxels above it. A level-L
+// texel is s = 2^L voxels wide; the surface's texels have their centres within s/2 + surface of
+// the plane, and trilinear filtering reaches texel centres up to s away. So a sample sees none of
+// its own surface while height >= 1.5 s + surface. Without this, a cone's first coarse samples
+// are darkened by the very surface it leaves (opaque, and dark from behind), which is what made
+// ceilings dim (the furnace: a voxel's second bounce gathered 20% too little). A point on a
+// surface has its voxels within half a voxel; a voxel's centre may lie
+// half a voxel below its surface, with a second layer above it (a wall on a voxel boundary).
+float self_clamp_level(float height, float surface) {
+    // A fractional level blends the texels of the level above (twice as wide): they too must
+    // stay clear, so the level is kept one below the widest clear texel.
+    return log2(max((height - surface) / 1.5, 1.0)) - 1.0;
+}
+
+// The state of a cone along its march.
+struct March {
+    vec3 color;
+    float alpha;
+    float dist;
+};
+
+// Where the cone's next sample lies, its level and its step (false once it leaves the volume).
+bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, ConeParams p, out vec3 pos,
+                 out float level, out float step) {
+    float diameter = max(2.0 * m.dist * tan_half, 1.0);
+    pos = start + m.dist * dir / p.resolution;
+    float l = log2(diameter) + p.lod_offset;
+    if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) l = min(l, self_clamp_level(p.bias + m.dist * rise, p.surface));
+    level = max(l, 0.0);
+    step = p.step * exp2(level);
+    // The cone has left the volume once its sample's trilinear filter no longer reaches inside:
+    // half a texel of its level beyond the edge. Stopping at the edge itself cut short the filter
+    // of every texel on the boundary, so walls the grid is fitted to lost a fifth of their light.
+    float reach = 0.5 * exp2(level) / p.resolution;
+    return all(greaterThan(pos, vec3(-reach))) && all(lessThan(pos, vec3(1.0 + reach)));
+}
+
+// The share of light with radiance moment `m` (xyz: sum of luminance times lit normal; w:
+// luminance) that can leave towards a cone travelling along `dir`: light whose surfaces all face
+// away (moment as long as the luminance) is hidden, a mixture in proportion.
+float facing_share(vec3 m, float lum, vec3 dir) {
+    if (lum <= 1e-8) return 1.0;
+    float away = dot(m, dir) / lum;  // coherence times the cosine of facing away
+    return 1.0 - clamp(away / LIT_SIDE_EDGE, 0.0, length(m) / lum);
+}
+
+// The isotropic volume's share (every direction the moment holds).
+float facing(vec4 mo, vec3 dir) {
+    return facing_share(mo.xyz, mo.w, dir);
+}
+
+// Each directional chain's share: a chain already keeps dark the light whose surfaces face away
+// along its own axis (the filter's lit-side weighting); what it cannot tell apart is light facing
+// across its axis, which it sees edge-on — the lit outside of a thin wall. So each chain's share
+// comes from the moment's part across its axis (left whole, light that another surface in the same
+// texel turns towards the cone would be hidden along with it).
+vec3 facing_across(vec4 mo, vec3 dir) {
+    return vec3(facing_share(vec3(0.0, mo.yz), mo.w, vec3(0.0, dir.yz)),
+                facing_share(vec3(mo.x, 0.0, mo.z), mo.w, vec3(dir.x, 0.0, dir.z)),
+                facing_share(vec3(mo.xy, 0.0), mo.w, vec3(dir.xy, 0.0)));
+}
+
+// Composites sample `s` (premultiplied) of a step `step` long at `level` behind what the cone
+// has; with `correct`, the sample's opacity stands for crossing a whole texel of its level and is
+// corrected for the step's length (Crassin et al. 2011).
+void accumulate(inout March m, vec4 s, float level, float step, bool correct) {
+    if (correct && s.a > 1e-6) {
+        float a = 1.0 - pow(max(1.0 - s.a, 0.0), step / exp2(level));
+        s = vec4(s.rgb * (a / s.a), a);
     }
-    return vec4(color, alpha);
+    float a = 1.0 - m.alpha;
+    m.color += s.rgb * a;
+    m.alpha += a * s.a;
+    m.dist += step;
+}
+
+// A cone stops once 95% opaque; the light behind its last 5% is of the kind it saw so far, not
+// black (left black, every gather of a closed room came out 5% dark).
+vec4 finish(March m) {
+    return m.alpha >= 0.95 ? vec4(m.color / m.alpha, 1.0) : vec4(m.color, m.alpha);
+}
+
+// The thesis' march through the isotropic volume.
+vec4 march_iso(sampler3D volume, sampler3D moment, vec3 uvw, vec3 normal, vec3 dir, float tan_half, ConeParams p) {
+    bool face = (p.flags & CONE_FLAG_FACING) != 0u;
+    vec3 start = uvw + p.bias * normal / p.resolution;
+    float rise = dot(dir, normal);
+    March m = March(vec3(0.0), 0.0, p.start);
+    vec3 pos;
+    float level, step;
+    for (int i = 0; i < p.steps && m.alpha < 0.95; i++) {
+        if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
+        vec4 s = textureLod(volume, pos, level);
+        if (face) s.rgb *= facing(textureLod(moment, pos, level), dir);
+        accumulate(m, s, level, step, (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u);
+    }
+    return finish(m);
+}
+
+// The anisotropic march through the directional chains of `atlas`. Below level 1 the isotropic
+// level 0 is blended in; that phase is a loop of its own, so a CPU driver does not read level 0
+// at every step (it flattens a branch inside a loop into running both sides).
+vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, vec3 normal, vec3 dir, float tan_half,
+                 ConeParams p) {
+    bool face = (p.flags & CONE_FLAG_FACING) != 0u;
+    vec3 start = uvw + p.bias * normal / p.resolution;
+    float rise = dot(dir, normal);
+    vec3 w = dir * dir;
+    bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
+    // Chain of axis a: 2a for a cone travelling along +a, 2a + 1 along -a; block 2 * chain.
+    vec3 block = 2.0 * (vec3(0.0, 2.0, 4.0) + vec3(lessThan(dir, vec3(0.0))));
+    March m = March(vec3(0.0), 0.0, p.start);
+    vec3 pos;
+    float level, step;
+    int i = 0;
+    bool inside = true;
+    for (; i < p.steps && m.alpha < 0.95; i++) {
+        inside = next_sample(m, start, dir, tan_half, rise, p, pos, level, step);
+        if (!inside || level >= 1.0) break;
+        vec4 mo = face ? textureLod(moment, pos, level) : vec4(0.0);
+        vec4 iso = textureLod(volume, pos, 0.0);
+        if (face) iso.rgb *= facing(mo, dir);
+        vec4 s = mix(iso, sample_chains(atlas, pos, w, block, 1.0, face ? facing_across(mo, dir) : vec3(1.0)), level);
+        accumulate(m, s, level, step, correct);
+    }
+    for (; inside && i < p.steps && m.alpha < 0.95; i++) {
+        if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
+        vec3 share = face ? facing_across(textureLod(moment, pos, level), dir) : vec3(1.0);
+        accumulate(m, sample_chains(atlas, pos, w, block, level, share), level, step, correct);
+    }
+    return finish(m);
+}
+
+// Returns accumulated radiance (rgb, premultiplied) and opacity (a). With `aniso` the
+// directional chains of `atlas` are sampled; otherwise only the isotropic `volume` (the thesis).
+// `tan_half`: tangent of the cone's half aperture.
+vec4 trace_cone_filtered(sampler3D volume, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw, vec3 normal,
+                         vec3 dir, float tan_half, ConeParams p) {
+    if (aniso) return march_aniso(volume, moment, atlas, uvw, normal, dir, tan_half, p);
+    return march_iso(volume, moment, uvw, normal, dir, tan_half, p);
 }
 
 // The thesis' isotropic cone trace (Listing 4.1).
-vec4 trace_cone(sampler3D volume, vec3 uvw, vec3 normal, vec3 dir, float aperture, ConeParams p) {
-    return trace_cone_filtered(volume, volume, volume, volume, volume, volume, volume, false, uvw, normal, dir, aperture, p);
+vec4 trace_cone(sampler3D volume, vec3 uvw, vec3 normal, vec3 dir, float tan_half, ConeParams p) {
+    return trace_cone_filtered(volume, volume, volume, false, uvw, normal, dir, tan_half, p);
 }
 
 // An orthonormal tangent frame around n (Frisvad 2012, revised by Duff et al. 2017).

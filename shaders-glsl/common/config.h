@@ -18,6 +18,12 @@
 #define LIGHT_SPOT 0
 #define LIGHT_DIRECTIONAL 1
 
+// Anisotropic radiance (render::radiance): the six directional chains (+X, -X, +Y, -Y, +Z, -Z)
+// share one 3D texture, stacked along y with an empty block between neighbours, so that one
+// sampler reads any of them (chain d at block 2d) and trilinear filtering at every level meets
+// zeros at a chain's edge, as at the volume's border.
+#define ANISO_BLOCKS 11
+
 // Shadow filtering: PCF kernel radius in texels ((2r+1)^2 taps).
 #define PCF_RADIUS 1
 // Normal offset of the shadow lookup, in shadow texels at the receiver.
@@ -34,9 +40,20 @@
 #define VOXEL_FLAG_DEPTH_SPAN 2
 
 // Global illumination (Freed 2018 §4.3-4.5).
-// Diffuse cones: full aperture in degrees (one along the normal, four tilted 45 degrees).
-#define DIFFUSE_CONE_APERTURE_DEG 45.0
-#define DIFFUSE_CONE_TILT_DEG 45.0
+// Diffuse cones: the largest cone set (render::cones), each cone a direction in the surface's
+// tangent frame, a weight and an aperture.
+#define MAX_CONES 32
+// Cone-tracing options (FrameUniforms.cone_model.z, a bit set).
+// Crassin et al. 2011: a sample's opacity stands for one voxel of its level; a step of another
+// length corrects it, alpha' = 1 - (1 - alpha)^(step / voxel).
+#define CONE_FLAG_OPACITY_CORRECTION 1
+// Keep the sampled level's filter off the receiving surface (common/cone.glsl).
+#define CONE_FLAG_SELF_CLAMP 2
+// Hide light that leaves its surface away from the cone (the radiance moment volume).
+#define CONE_FLAG_FACING 4
+// Soft edge of "facing away" (a dot product of unit vectors): light whose surface normal is
+// within this of perpendicular to the view counts in part.
+#define LIT_SIDE_EDGE 0.25
 // Narrowest specular cone (full aperture, radians): 0.1 pi roughness, never below this.
 #define MIN_SPECULAR_APERTURE 0.02
 // Debug views (FrameUniforms.view.x).

@@ -17,7 +17,8 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 viewport;      // xy: render size in pixels
     vec4 voxel_origin;  // xyz: voxel grid origin (world); w: voxel size
     vec4 voxel_grid;    // x: resolution N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
-    vec4 cone;          // x: max steps; y: bias along the normal (voxels); z: start height (voxels); w: LOD offset
+    vec4 cone;          // x: max steps; y: bias along the normal (voxels); z: start distance (voxels); w: LOD offset
+    vec4 cone_model;    // x: surface cones in `cones`; y: step (of a texel); z: CONE_FLAG_*; w: bounce cones (from MAX_CONES)
     vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0)
     vec4 history_shift; // xyz: this frame's grid origin in the previous frame's grid (voxels)
 } frame;
@@ -36,6 +37,17 @@ struct Material {
 
 layout(set = 0, binding = 1, std430) readonly buffer Materials { Material materials[]; };
 
+// The diffuse cone set (render::cones::ConeGpu): a cosine-weighted quadrature of the hemisphere.
+struct Cone {
+    vec4 dir_weight;  // xyz: direction in the tangent frame (z along the normal); w: weight
+    vec4 shape;       // x: tan(half aperture)
+};
+
+layout(set = 0, binding = 2, std430) readonly buffer Cones { Cone cones[]; };
+
+// The drawn material (passes that push something else define VCT_OWN_PUSH first).
+#ifndef VCT_OWN_PUSH
 layout(push_constant) uniform Push { uint material; } push;
+#endif
 
 #endif

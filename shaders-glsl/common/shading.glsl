@@ -1,19 +1,21 @@
 // Surface shading shared by the forward fragment shader and the deferred compute shader
 // (Freed 2018 §4.5, Algorithm 3): emission plus Cook-Torrance direct light (3x3 PCF shadow)
-// plus indirect light by voxel cone tracing — five diffuse cones (45 degrees, one along the
-// normal, four tilted 45 degrees, weighted by their cosine) and one specular cone along the
-// reflection (aperture 0.1 pi roughness). Diffuse-cone occlusion gives ambient occlusion.
-// The includer binds `shadow_map` (sampler2DShadow), `radiance_volume` (sampler3D) and the six
-// directional volumes `radiance_px` ... `radiance_nz` (sampled when the ANISOTROPIC
-// specialization constant is set; a constant, so the isotropic variant carries no extra work).
+// plus indirect light by voxel cone tracing — the diffuse cone set (common/gather.glsl) and one
+// specular cone along the reflection (aperture 0.1 pi roughness). Diffuse-cone occlusion gives
+// ambient occlusion.
+// The includer binds `shadow_map` (sampler2DShadow), `radiance_volume` (sampler3D), the moment
+// `radiance_moment` and the directional chains' atlas `radiance_aniso` (sampled when the
+// ANISOTROPIC specialization constant is set; a constant, so the isotropic variant carries no
+// extra work).
 #ifndef VCT_SHADING_GLSL
 #define VCT_SHADING_GLSL
 #include "frame.glsl"
 #include "brdf.glsl"
 #include "light.glsl"
-#include "cone.glsl"
 
 layout(constant_id = 0) const bool ANISOTROPIC = false;
+
+#include "gather.glsl"
 
 // Fraction of the light reaching `p` on a surface with normal `n` (3x3 PCF). The lookup point
 // moves SHADOW_NORMAL_OFFSET shadow texels along the normal (normal-offset shadows), so the
@@ -54,32 +56,17 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
     float occlusion = 0.0;
     if (frame.view.z > 0.5) {
-        ConeParams p = ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_grid.x);
+        ConeParams p = frame_cone_params();
         vec3 uvw = world_to_uvw(world);
-        vec3 t, b;
-        tangent_frame(n, t, b);
-        float tilt = radians(DIFFUSE_CONE_TILT_DEG), aperture = radians(DIFFUSE_CONE_APERTURE_DEG);
-        // Cosine weights: the irradiance integral weights each direction by n.dir.
-        float w_side = cos(tilt), w_sum = 1.0 + 4.0 * w_side;
-        vec3 dirs[5] = vec3[](n, n * cos(tilt) + t * sin(tilt), n * cos(tilt) - t * sin(tilt),
-                              n * cos(tilt) + b * sin(tilt), n * cos(tilt) - b * sin(tilt));
-        const bool aniso = ANISOTROPIC;
-        vec3 gathered = vec3(0.0);
-        for (int i = 0; i < 5; i++) {
-            float w = (i == 0 ? 1.0 : w_side) / w_sum;
-            vec4 c = trace_cone_filtered(radiance_volume, radiance_px, radiance_nx, radiance_py, radiance_ny, radiance_pz,
-                                            radiance_nz, aniso, uvw, n, normalize(dirs[i]), aperture, p);
-            gathered += w * c.rgb;
-            occlusion += w * c.a;
-        }
+        vec4 gathered = gather_diffuse(uvw, n, p);
+        occlusion = gathered.a;
         // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
-        diffuse = albedo * (1.0 - metallic) * gathered;
+        diffuse = albedo * (1.0 - metallic) * gathered.rgb;
         vec3 f0 = mix(m.specular.rgb, albedo, metallic);
         if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
             vec3 r = reflect(-v, n);
             float spec_aperture = max(0.1 * PI * roughness, MIN_SPECULAR_APERTURE);
-            vec4 c = trace_cone_filtered(radiance_volume, radiance_px, radiance_nx, radiance_py, radiance_ny, radiance_pz,
-                                            radiance_nz, aniso, uvw, n, r, spec_aperture, p);
+            vec4 c = trace_frame_cone(uvw, n, r, tan(0.5 * spec_aperture), p);
             specular = fresnel_schlick(f0, dot(n, v)) * c.rgb;
         }
     }

@@ -3,20 +3,24 @@
 // mix(previous, injected, factor); factor 1 (the default) keeps only this frame. When the
 // volume follows the camera its grid moves, so the previous frame's radiance is reprojected:
 // read (trilinearly) where this voxel's centre lay in the previous grid, from a copy of the
-// previous level 0. Voxels new to the volume start from this frame alone.
+// previous level 0. Voxels new to the volume start from this frame alone. `source` is the
+// injected radiance, or with several bounces each bounce's result; only the last one of a frame
+// blends with the history (push constant `history`).
+#define VCT_OWN_PUSH
 #include "frame.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 1, binding = 0, rgba16f) uniform readonly image3D injected;
 layout(set = 1, binding = 1, rgba16f) uniform writeonly image3D radiance;
 layout(set = 1, binding = 2) uniform sampler3D history;
+layout(push_constant) uniform Push { uint use_history; } push;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
     ivec3 size = imageSize(radiance);
     if (any(greaterThanEqual(v, size))) return;
     vec4 now = imageLoad(injected, v);
-    float factor = frame.voxel_grid.w > 0.5 ? 1.0 : frame.voxel_grid.z;
+    float factor = frame.voxel_grid.w > 0.5 || push.use_history == 0u ? 1.0 : frame.voxel_grid.z;
     vec3 previous = (vec3(v) + 0.5 + frame.history_shift.xyz) / vec3(size);
     bool inside = all(greaterThanEqual(previous, vec3(0.0))) && all(lessThanEqual(previous, vec3(1.0)));
     if (factor < 1.0 && inside) now = mix(textureLod(history, previous, 0.0), now, factor);

@@ -7,7 +7,7 @@
 layout(local_size_x = WORKGROUP_1D) in;
 
 struct Probe {
-    vec4 uvw_aperture;  // xyz: start (texture space); w: full aperture (radians)
+    vec4 uvw_aperture;  // xyz: start (texture space); w: tangent of the half aperture
     vec4 normal;
     vec4 dir;
 };
@@ -15,12 +15,15 @@ struct Probe {
 layout(set = 0, binding = 0) uniform sampler3D volume;
 layout(set = 0, binding = 1, std430) readonly buffer Probes { Probe probes[]; };
 layout(set = 0, binding = 2, std430) writeonly buffer Results { vec4 results[]; };
-layout(push_constant) uniform Push { int steps; float bias; float start; float lod_offset; float resolution; uint count; } push;
+layout(push_constant) uniform Push {
+    int steps; float bias; float start; float lod_offset; float resolution; float step; uint flags; uint count;
+} push;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= push.count) return;
     Probe p = probes[i];
-    ConeParams params = ConeParams(push.steps, push.bias, push.start, push.lod_offset, push.resolution);
+    ConeParams params =
+        ConeParams(push.steps, push.bias, push.start, push.lod_offset, push.resolution, push.step, push.flags, 0.5);
     results[i] = trace_cone(volume, p.uvw_aperture.xyz, p.normal.xyz, p.dir.xyz, p.uvw_aperture.w, params);
 }

@@ -8,19 +8,21 @@
 // side faces (inject.comp records it): a Lambertian face reflects into its own hemisphere, so
 // a wall lit on one side is opaque and dark seen from the other, even where its voxel is the
 // only one (the radiance-level counterpart of the thesis' §6 anisotropic voxels).
+// The chains live in one atlas (config.h, ANISO_BLOCKS): each reads and writes its own block.
 #include "config.h"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
 layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
-// direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0.
-layout(push_constant) uniform Push { uint direction; uint base; } push;
+// direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0;
+// src_y, dst_y: where the chain's block starts in src and dst (texels); size: the level's extent.
+layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint dst_y; uint size; } push;
 
 // The child at `v` as seen by a cone travelling along `dir`: its light only where the light
 // leaves towards the cone (against `dir`), with a soft edge for grazing normals.
 vec4 child(ivec3 v, vec3 dir) {
-    vec4 c = imageLoad(src, v);
+    vec4 c = imageLoad(src, v + ivec3(0, push.src_y, 0));
     if (push.base == 0u) return c;
     uint side = imageLoad(lit_side, v).r;
     if ((side >> 24) == 0u) return c;
@@ -30,7 +32,7 @@ vec4 child(ivec3 v, vec3 dir) {
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, imageSize(dst)))) return;
+    if (any(greaterThanEqual(v, ivec3(push.size)))) return;
     int axis = int(push.direction / 2u);
     bool positive = (push.direction & 1u) == 0u;
     ivec3 step = ivec3(0);
@@ -46,5 +48,5 @@ void main() {
         vec4 far = child(positive ? base + step : base, dir);
         sum += near + (1.0 - near.a) * far;
     }
-    imageStore(dst, v, sum * 0.25);
+    imageStore(dst, v + ivec3(0, push.dst_y, 0), sum * 0.25);
 }

@@ -5,7 +5,8 @@
 // The value is computed at the voxel centre, so every texel that hits a voxel writes the same
 // value: the result does not depend on which write lands last. It also records the lit side:
 // the voxel normal turned towards the light, which the anisotropic filter uses to keep a lit
-// face dark when seen from behind (a Lambertian face reflects into its own hemisphere only).
+// face dark when seen from behind (a Lambertian face reflects into its own hemisphere only),
+// and around which the voxel-space bounce gathers.
 #include "frame.glsl"
 #include "light.glsl"
 #include "rgb9e5.glsl"
@@ -17,8 +18,6 @@ layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
 layout(set = 1, binding = 5, r32ui) uniform writeonly uimage3D lit_side;
-// Record the lit side (only the anisotropic filter reads it; the pass clears it first).
-layout(constant_id = 0) const bool ANISOTROPIC = false;
 
 const float PI = 3.14159265358979;
 
@@ -74,7 +73,7 @@ void main() {
     vec3 reflected = unpack(a).rgb / PI * irradiance * cos_theta;
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
     imageStore(target, v, vec4(emission + reflected, 1.0));
-    if (ANISOTROPIC && length(normal) > 1e-3) {
+    if (length(normal) > 1e-3) {
         vec3 side = normalize(normal) * (dot(normal, l) < 0.0 ? -1.0 : 1.0);
         uvec3 q = uvec3(round((side * 0.5 + 0.5) * 255.0));
         imageStore(lit_side, v, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));

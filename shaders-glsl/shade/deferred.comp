@@ -10,12 +10,8 @@ layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
 layout(set = 2, binding = 2, rgba16f) uniform readonly image2D gbuffer_albedo;
 layout(set = 2, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 2, binding = 4, rgba32f) uniform writeonly image2D hdr;
-layout(set = 2, binding = 5) uniform sampler3D radiance_px;
-layout(set = 2, binding = 6) uniform sampler3D radiance_nx;
-layout(set = 2, binding = 7) uniform sampler3D radiance_py;
-layout(set = 2, binding = 8) uniform sampler3D radiance_ny;
-layout(set = 2, binding = 9) uniform sampler3D radiance_pz;
-layout(set = 2, binding = 10) uniform sampler3D radiance_nz;
+layout(set = 2, binding = 5) uniform sampler3D radiance_aniso;
+layout(set = 2, binding = 6) uniform sampler3D radiance_moment;
 
 #include "shading.glsl"
 

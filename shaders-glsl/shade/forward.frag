@@ -5,12 +5,8 @@
 
 layout(set = 2, binding = 0) uniform sampler2DShadow shadow_map;
 layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
-layout(set = 2, binding = 2) uniform sampler3D radiance_px;
-layout(set = 2, binding = 3) uniform sampler3D radiance_nx;
-layout(set = 2, binding = 4) uniform sampler3D radiance_py;
-layout(set = 2, binding = 5) uniform sampler3D radiance_ny;
-layout(set = 2, binding = 6) uniform sampler3D radiance_pz;
-layout(set = 2, binding = 7) uniform sampler3D radiance_nz;
+layout(set = 2, binding = 2) uniform sampler3D radiance_aniso;
+layout(set = 2, binding = 3) uniform sampler3D radiance_moment;
 
 #include "shading.glsl"
 #include "surface.glsl"

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::accuracy::AccuracyRow;
 use super::stability::Regime;
 use super::{Results, Row};
 use crate::error::{Error, Result};
@@ -357,6 +358,60 @@ pub fn draw_regime(dir: &Path, g: &Regime) -> Result<Vec<PathBuf>> {
     regime_chart(BitMapBackend::new(&path.with_extension("png"), (900, 560)).into_drawing_area(), g)
         .map_err(|e| err(e.to_string()))?;
     regime_chart(SVGBackend::new(&path.with_extension("svg"), (900, 560)).into_drawing_area(), g)
+        .map_err(|e| err(e.to_string()))?;
+    Ok(vec![path.with_extension("png"), path.with_extension("svg")])
+}
+
+/// The speed-against-accuracy chart of the GI study: one panel per scene, FLIP against the
+/// path-traced reference over frame GPU time, each point a variant and resolution, the Pareto
+/// front marked.
+fn accuracy_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, rows: &[AccuracyRow]) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    scenes.sort();
+    scenes.dedup();
+    let cols = scenes.len().clamp(1, 2);
+    let panels = root.split_evenly((scenes.len().div_ceil(cols).max(1), cols));
+    for (scene, area) in scenes.iter().zip(panels.iter()) {
+        let mine: Vec<&AccuracyRow> = rows.iter().filter(|r| r.scene == *scene).collect();
+        let pts: Vec<(f64, f64)> = mine.iter().map(|r| (r.frame_ms, r.flip as f64)).collect();
+        let (ylo, yhi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
+        let pad = ((yhi - ylo) * 0.1).max(1e-3);
+        let mut chart = ChartBuilder::on(area)
+            .caption(format!("{scene}: FLIP against the path tracer"), ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), (ylo - pad)..(yhi + pad))?;
+        chart.configure_mesh().x_desc("frame GPU ms (log)").y_desc("FLIP (lower is better)").draw()?;
+        let front = pareto(&pts, false);
+        chart.draw_series(LineSeries::new(front.iter().map(|&i| pts[i]), BLACK.stroke_width(1)))?;
+        chart.draw_series(mine.iter().zip(&pts).map(|(r, p)| {
+            let c = if r.variant.starts_with("default") { PALETTE[0] } else { PALETTE[1] };
+            EmptyElement::at(*p)
+                + Circle::new((0, 0), 3, c.filled())
+                + Text::new(format!("{} {}", r.variant, r.resolution), (4, -10), ("sans-serif", 9))
+        }))?;
+    }
+    root.present()
+}
+
+/// Draws `accuracy.png` and `.svg` in `dir`.
+pub fn draw_accuracy(dir: &Path, rows: &[AccuracyRow]) -> Result<Vec<PathBuf>> {
+    ensure_font()?;
+    let path = dir.join("accuracy");
+    let err = |m: String| Error::input(&path, format!("drawing the chart: {m}"));
+    let panels = {
+        let mut s: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+        s.sort();
+        s.dedup();
+        s.len().max(1)
+    };
+    let size = (1400, 520 * panels.div_ceil(2) as u32);
+    accuracy_chart(BitMapBackend::new(&path.with_extension("png"), size).into_drawing_area(), rows)
+        .map_err(|e| err(e.to_string()))?;
+    accuracy_chart(SVGBackend::new(&path.with_extension("svg"), size).into_drawing_area(), rows)
         .map_err(|e| err(e.to_string()))?;
     Ok(vec![path.with_extension("png"), path.with_extension("svg")])
 }

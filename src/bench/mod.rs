@@ -4,6 +4,7 @@
 //! path-traced one-bounce reference (cached on disk by a hash of scene and settings). Writes
 //! `results.csv`, `results.json` and the charts of [`charts`].
 
+pub mod accuracy;
 pub mod charts;
 pub mod stability;
 
@@ -130,25 +131,30 @@ pub fn subdivide_uniform(mesh: &Mesh, levels: u32) -> Mesh {
     m
 }
 
-/// The path-traced reference of `scene` (one bounce), from the cache when it is there.
-fn reference(
+/// Bumped when the path tracer's estimator changes, so cached references are traced again.
+const REFERENCE_VERSION: u32 = 3;
+
+/// The path-traced reference of `scene` with `bounces` bounces, from the cache when it is there.
+pub fn reference_cached(
     scene: &Scene,
     name: &str,
+    bounces: u32,
     spp: u32,
     cache: &Path,
     progress: &dyn Fn(&str),
 ) -> Result<(Vec<Vec3>, ReferenceInfo)> {
     let mut h = DefaultHasher::new();
     format!(
-        "{:?}|{}|{}|{:?}|{:?}|{spp}|1",
+        "{REFERENCE_VERSION}|{:?}|{}|{}|{:?}|{:?}|{:?}|{spp}|{bounces}",
         scene.source,
         scene.mesh.triangle_count(),
         scene.mesh.vertices.len(),
         scene.camera,
-        scene.light
+        scene.lights,
+        scene.materials.iter().map(|m| (m.albedo, m.emissive, m.specular, m.roughness)).collect::<Vec<_>>(),
     )
     .hash(&mut h);
-    let path = cache.join(format!("reference-{name}-{:016x}.exr", h.finish()));
+    let path = cache.join(format!("reference-{name}-b{bounces}-{:016x}.exr", h.finish()));
     let noise_path = path.with_extension("noise");
     if let (Ok(frame), Ok(noise)) = (output::read_frame(&path), std::fs::read_to_string(&noise_path)) {
         if (frame.width, frame.height) == (scene.camera.width, scene.camera.height) {
@@ -156,8 +162,8 @@ fn reference(
             return Ok((frame.linear(), ReferenceInfo { scene: name.into(), path, relative_noise }));
         }
     }
-    progress(&format!("path tracing the {name} reference ({spp} spp)"));
-    let img = PathTracer::new(scene).render(RefOptions { bounces: 1, spp, seed: 1 }, &|_| {});
+    progress(&format!("path tracing the {name} reference ({bounces} bounce(s), {spp} spp)"));
+    let img = PathTracer::new(scene).render(RefOptions { bounces, spp, seed: 1 }, &|_| {});
     std::fs::create_dir_all(cache).map_err(|source| Error::Io { path: cache.to_path_buf(), source })?;
     output::write_exr(&path, &crate::render::FrameImages::from_linear(img.width, img.height, &img.radiance))?;
     std::fs::write(&noise_path, img.relative_noise.to_string())
@@ -178,7 +184,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     let mut rows = Vec::new();
     let mut references = Vec::new();
     for (name, scene) in &opts.scenes {
-        let (reference, info) = reference(scene, name, opts.reference_spp, &opts.cache_dir, progress)?;
+        let (reference, info) = reference_cached(scene, name, 1, opts.reference_spp, &opts.cache_dir, progress)?;
         let ref_rgb = metrics::tonemap(&reference);
         references.push(info);
         for &res in &opts.resolutions {

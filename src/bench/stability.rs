@@ -21,6 +21,7 @@ use crate::error::Result;
 use crate::gpu::Context;
 use crate::reference::coverage::RefGrid;
 use crate::render::{Follow, RenderOptions, Renderer, View};
+use crate::scene::file::{Filter, GiFile};
 use crate::scene::{Camera, Light, Scene};
 use crate::voxel::headless::voxelize_in;
 use crate::voxel::{Coverage, VoxelGrid, VoxelizeMethod, DEFAULT_LEVEL_SCALE};
@@ -146,7 +147,8 @@ pub fn lone_plane() -> Scene {
     let q =
         [Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(-1.0, 0.0, 1.0)];
     let mut scene = Scene::from_triangles(&[([q[0], q[2], q[1]], 0), ([q[0], q[3], q[2]], 0)], &[Vec3::splat(0.8)]);
-    scene.light = Light::Directional { direction: Vec3::new(0.2, -1.0, 0.1).normalize(), irradiance: Vec3::splat(3.0) };
+    scene.lights =
+        vec![Light::Directional { direction: Vec3::new(0.2, -1.0, 0.1).normalize(), irradiance: Vec3::splat(3.0) }];
     scene.camera = Camera {
         eye: Vec3::new(0.0, 2.5, 0.01),
         target: Vec3::ZERO,
@@ -158,10 +160,12 @@ pub fn lone_plane() -> Scene {
     scene
 }
 
-/// Mean indirect over mean direct radiance on the lone plane with cone offset `bias` voxels.
-pub fn self_illumination_ratio(ctx: &Arc<Context>, bias: f32, resolution: u32) -> Result<f64> {
+/// Mean indirect over mean direct radiance on the lone plane, cone model `gi` with its offset
+/// set to `bias` voxels.
+pub fn self_illumination_ratio(ctx: &Arc<Context>, gi: &GiFile, bias: f32, resolution: u32) -> Result<f64> {
     let mean = |view: View| -> Result<f64> {
         let mut scene = lone_plane();
+        scene.settings.gi = gi.clone();
         scene.settings.gi.bias = bias;
         let o = RenderOptions {
             method: VoxelizeMethod::raster(Coverage::Msaa),
@@ -178,13 +182,19 @@ pub fn self_illumination_ratio(ctx: &Arc<Context>, bias: f32, resolution: u32) -
     Ok(mean(View::Indirect)? / mean(View::Direct)?.max(1e-9))
 }
 
-/// Regime 5: self-illumination against the cone offset.
+/// Regime 5: self-illumination against the cone offset, with the thesis' cone model (where the
+/// offset is the only fix) and with the default one (the self clamp: cones sample no level
+/// finer than their distance from the surface allows).
 pub fn self_illumination(ctx: &Arc<Context>, biases: &[f32]) -> Result<Regime> {
     let mut series = Vec::new();
-    for res in [32, 64] {
-        let points =
-            biases.iter().map(|&b| Ok((b as f64, self_illumination_ratio(ctx, b, res)?))).collect::<Result<_>>()?;
-        series.push(Series { label: format!("{res}³"), points });
+    for (model, gi) in [("thesis", GiFile::thesis()), ("default", GiFile::default())] {
+        for res in [32, 64] {
+            let points = biases
+                .iter()
+                .map(|&b| Ok((b as f64, self_illumination_ratio(ctx, &gi, b, res)?)))
+                .collect::<Result<_>>()?;
+            series.push(Series { label: format!("{model} {res}³"), points });
+        }
     }
     Ok(Regime {
         name: "self_illumination".into(),
@@ -211,13 +221,13 @@ pub fn two_rooms() -> Scene {
     tris.extend(quad(c(2., 0., -1.), c(2., 2., -1.), c(2., 2., 1.), c(2., 0., 1.))); // right
     tris.extend(quad(c(0., 0., -1.), c(0., 2., -1.), c(0., 2., 1.), c(0., 0., 1.))); // divider
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(0.75)]);
-    scene.light = Light::Spot {
+    scene.lights = vec![Light::Spot {
         position: c(-1.0, 1.95, 0.0),
         direction: Vec3::NEG_Y,
         intensity: Vec3::splat(20.0),
         inner_deg: 60.0,
         outer_deg: 70.0,
-    };
+    }];
     scene.camera = Camera {
         eye: c(1.9, 1.6, 0.9),
         target: c(0.3, 0.4, -0.6),
@@ -231,31 +241,38 @@ pub fn two_rooms() -> Scene {
 
 /// Mean radiance seen in the dark room (truth: 0, every path to the light is walled off).
 /// `two_sided`: the rasterized voxelizer's depth span, which gives a wall lying on a voxel
-/// boundary a voxel on each side (off: the thesis' one voxel per fragment).
-pub fn leak(ctx: &Arc<Context>, two_sided: bool, anisotropic: bool, resolution: u32) -> Result<f64> {
+/// boundary a voxel on each side (off: the thesis' one voxel per fragment). Cone model `gi`
+/// with its filter set by `anisotropic`.
+pub fn leak(ctx: &Arc<Context>, gi: &GiFile, two_sided: bool, anisotropic: bool, resolution: u32) -> Result<f64> {
     let o = RenderOptions {
         method: VoxelizeMethod::Raster { coverage: Coverage::Msaa, viewport_scale: 1.0, depth_span: two_sided },
         resolution: Some(resolution),
-        anisotropic,
         ..Default::default()
     };
-    let r = Renderer::new(ctx, two_rooms(), o)?;
+    let mut scene = two_rooms();
+    scene.settings.gi = gi.clone();
+    scene.settings.gi.filter = if anisotropic { Filter::Aniso } else { Filter::Iso };
+    let r = Renderer::new(ctx, scene, o)?;
     r.render()?;
     let f = r.read_frame()?;
     Ok(f.hdr.chunks_exact(4).map(|p| p[1] as f64).sum::<f64>() / (f.hdr.len() / 4) as f64)
 }
 
 /// Regime 3: light leaking through a thin wall: the thesis' voxelization and filtering, a voxel
-/// on each side of the wall (the fix), and that with anisotropic filtering.
+/// on each side of the wall (the fix), and that with anisotropic filtering, all with the thesis'
+/// cone model; then the default model (anisotropic, self clamp, facing factor).
 pub fn light_leaking(ctx: &Arc<Context>, resolutions: &[u32]) -> Result<Regime> {
     let mut series = Vec::new();
-    for (label, two_sided, aniso) in [
-        ("one voxel per fragment, isotropic (thesis)", false, false),
-        ("a voxel on each side of the wall (fix)", true, false),
-        ("each side + anisotropic voxels", true, true),
+    let thesis = GiFile::thesis();
+    let default = GiFile::default();
+    for (label, gi, two_sided, aniso) in [
+        ("one voxel per fragment, isotropic (thesis)", &thesis, false, false),
+        ("a voxel on each side of the wall (fix)", &thesis, true, false),
+        ("each side + anisotropic voxels", &thesis, true, true),
+        ("each side, default cone model", &default, true, true),
     ] {
         let points =
-            resolutions.iter().map(|&n| Ok((n as f64, leak(ctx, two_sided, aniso, n)?))).collect::<Result<_>>()?;
+            resolutions.iter().map(|&n| Ok((n as f64, leak(ctx, gi, two_sided, aniso, n)?))).collect::<Result<_>>()?;
         series.push(Series { label: label.into(), points });
     }
     Ok(Regime {
@@ -309,7 +326,9 @@ pub fn flicker(
         if moving_volume {
             r.follow(centre + Vec3::X * 0.03 * f as f32)?;
         } else {
-            crate::viewer::camera::swing_light(&mut r.scene.light, 0.0, 0.5f32.to_radians());
+            if let Some(light) = r.scene.lights.first_mut() {
+                crate::viewer::camera::swing_light(light, 0.0, 0.5f32.to_radians());
+            }
         }
         r.render()?;
         let hdr: Vec<f32> = r.read_frame()?.hdr.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();

@@ -167,6 +167,16 @@ pub fn dispatch(ctx: &Context, cmd: vk::CommandBuffer, threads: [u32; 3], local:
     unsafe { ctx.device.cmd_dispatch(cmd, g[0], g[1], g[2]) };
 }
 
+/// Dispatches the workgroup counts held in `args` (a `VkDispatchIndirectCommand` at offset 0).
+pub fn dispatch_indirect(ctx: &Context, cmd: vk::CommandBuffer, args: &Buffer) {
+    unsafe { ctx.device.cmd_dispatch_indirect(cmd, args.raw, 0) };
+}
+
+/// Fills the first `bytes` of `buffer` with `value` (a transfer write).
+pub fn fill_buffer(ctx: &Context, cmd: vk::CommandBuffer, buffer: &Buffer, bytes: u64, value: u32) {
+    unsafe { ctx.device.cmd_fill_buffer(cmd, buffer.raw, 0, bytes, value) };
+}
+
 /// Sets a full-size viewport and scissor.
 pub fn set_viewport(ctx: &Context, cmd: vk::CommandBuffer, width: u32, height: u32) {
     let viewport =

@@ -38,6 +38,10 @@ impl ImageDesc {
             usage,
         }
     }
+    /// A 3D image of `extent` texels.
+    pub fn d3_extent(format: vk::Format, extent: vk::Extent3D, usage: vk::ImageUsageFlags) -> Self {
+        ImageDesc { extent, ..Self::d3(format, 1, usage) }
+    }
     pub fn mips(mut self, levels: u32) -> Self {
         self.mip_levels = levels;
         self

@@ -17,6 +17,12 @@ pub struct ConeParams {
     pub bias: f32,
     pub start: f32,
     pub lod_offset: f32,
+    /// Step length over the sampled level's texel size.
+    pub step: f32,
+    /// Correct opacity for the step length (Crassin et al. 2011).
+    pub opacity_correction: bool,
+    /// Keep the sampled level's filter off the receiving surface.
+    pub self_clamp: bool,
 }
 
 impl MipVolume {
@@ -58,27 +64,45 @@ impl MipVolume {
         a * (1.0 - t) + self.sample_level((l0 as usize + 1).min(max as usize), p) * t
     }
 
-    /// Accumulated (radiance, opacity) along a cone; mirrors `trace_cone` in cone.glsl.
-    pub fn trace_cone(&self, uvw: Vec3, normal: Vec3, dir: Vec3, aperture: f32, p: ConeParams) -> Vec4 {
+    /// Accumulated (radiance, opacity) along a cone of half-aperture tangent `tan_half`;
+    /// mirrors `trace_cone` in cone.glsl.
+    pub fn trace_cone(&self, uvw: Vec3, normal: Vec3, dir: Vec3, tan_half: f32, p: ConeParams) -> Vec4 {
         let scale = 1.0 / self.n as f32;
         let start = uvw + p.bias * normal * scale;
-        let mut height = p.start;
-        let tan_half = (aperture * 0.5).tan();
+        let mut dist = p.start;
+        let rise = dir.dot(normal);
         let (mut color, mut alpha) = (Vec3::ZERO, 0.0f32);
         let mut i = 0;
         while i < p.steps && alpha < 0.95 {
-            let radius = height * tan_half;
-            let lod = (2.0 * radius).max(1.0).log2();
-            let pos = start + height * dir * scale;
-            if pos.min_element() < 0.0 || pos.max_element() > 1.0 {
+            let diameter = (2.0 * dist * tan_half).max(1.0);
+            let pos = start + dist * dir * scale;
+            let mut l = diameter.log2() + p.lod_offset;
+            if p.self_clamp {
+                // The sample's trilinear filter stays off its own surface's texels.
+                let height = p.bias + dist * rise;
+                // A point on the surface; the blended level above must stay clear too.
+                l = l.min(((height - 0.5) / 1.5).max(1.0).log2() - 1.0);
+            }
+            let l = l.max(0.0);
+            // Inside while the sample's filter reaches the volume: half a texel of its level.
+            let reach = 0.5 * l.exp2() * scale;
+            if pos.min_element() <= -reach || pos.max_element() >= 1.0 + reach {
                 break;
             }
-            let s = self.sample(pos, lod + p.lod_offset);
+            let step = p.step * l.exp2();
+            let mut s = self.sample(pos, l);
+            if p.opacity_correction && s.w > 1e-6 {
+                let a = 1.0 - (1.0 - s.w).max(0.0).powf(step / l.exp2());
+                s = (s.truncate() * (a / s.w)).extend(a);
+            }
             let a = 1.0 - alpha;
             color += s.truncate() * a;
             alpha += a * s.w;
-            height += radius.max(0.5);
+            dist += step;
             i += 1;
+        }
+        if alpha >= 0.95 {
+            return (color / alpha).extend(1.0);
         }
         color.extend(alpha)
     }

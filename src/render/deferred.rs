@@ -75,18 +75,13 @@ impl DeferredShadePass {
                 Binding::new(4, storage, c),
                 Binding::new(5, sampled, c),
                 Binding::new(6, sampled, c),
-                Binding::new(7, sampled, c),
-                Binding::new(8, sampled, c),
-                Binding::new(9, sampled, c),
-                Binding::new(10, sampled, c),
             ],
         )?;
         let shadow_sampler = Sampler::shadow(ctx, "deferred shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
         set.write_images(1, sampled, &[radiance.sampled_info()]);
-        for (i, info) in radiance.aniso_infos().into_iter().enumerate() {
-            set.write_images(5 + i as u32, sampled, &[info]);
-        }
+        set.write_images(5, sampled, &[radiance.aniso_info()]);
+        set.write_images(6, sampled, &[radiance.moment_info()]);
         set.write_storage(2, albedo.view.raw);
         set.write_storage(3, normal.view.raw);
         set.write_storage(4, targets.hdr.view.raw);

@@ -24,6 +24,7 @@ pub struct FrameUniforms {
     pub voxel_origin: Vec4,
     pub voxel_grid: Vec4,
     pub cone: Vec4,
+    pub cone_model: Vec4,
     pub view: Vec4,
     /// xyz: where this frame's voxel grid origin lies in the previous frame's grid (voxels).
     pub history_shift: Vec4,
@@ -95,6 +96,9 @@ pub struct FrameState<'a> {
     pub grid: &'a VoxelGrid,
     pub mip_levels: u32,
     pub gi: &'a GiSettings,
+    /// Cones in the surfaces' and in the voxel bounce's set (`render::cones`).
+    pub cone_count: u32,
+    pub bounce_cone_count: u32,
     pub gi_on: bool,
     pub view: View,
     pub first_frame: bool,
@@ -136,8 +140,11 @@ pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
 }
 
 impl FrameUniforms {
-    pub fn new(camera: &Camera, light: &Light, bounds: &Aabb, shadow_resolution: u32, f: &FrameState) -> Self {
+    /// `light`: the shadowed light, if the scene has one (emitters light it besides).
+    pub fn new(camera: &Camera, light: Option<&Light>, bounds: &Aabb, shadow_resolution: u32, f: &FrameState) -> Self {
         let (near, far) = depth_range(camera.eye, bounds);
+        let none = Light::Directional { direction: Vec3::NEG_Y, irradiance: Vec3::ZERO };
+        let light = light.unwrap_or(&none);
         let (light_pos, light_dir, light_color, cone) = match *light {
             Light::Spot { position, direction, intensity, inner_deg, outer_deg } => (
                 position.extend(config::LIGHT_SPOT as f32),
@@ -173,7 +180,8 @@ impl FrameUniforms {
                 f.gi.temporal,
                 f.first_frame as u32 as f32,
             ),
-            cone: Vec4::new(f.gi.steps as f32, f.gi.bias, f.gi.cone_start, f.gi.lod_offset),
+            cone: Vec4::new(f.gi.steps as f32, f.gi.bias, f.gi.cone_start, f.gi.lod_offset + f.gi.level.offset()),
+            cone_model: Vec4::new(f.cone_count as f32, f.gi.step, f.gi.cone_flags() as f32, f.bounce_cone_count as f32),
             view: Vec4::new(f.view.code() as f32, level as f32, f.gi_on as u32 as f32, 0.0),
             history_shift: ((f.grid.origin - f.previous_origin) / f.grid.voxel).extend(0.0),
         }

@@ -1,15 +1,19 @@
 //! The frame: each pass is one module with one struct (`new` + `record`), and
 //! [`Renderer::record`] lists the frame's passes in order, top to bottom.
 
+pub mod bounce;
+pub mod cones;
 pub mod deferred;
 pub mod filter;
 pub mod frame;
 pub mod inject;
+pub mod occupancy;
 pub mod prepass;
 pub mod radiance;
 pub mod scene_gpu;
 pub mod shade;
 pub mod shadow;
+pub mod temporal;
 pub mod tonemap;
 pub mod volume_view;
 pub mod voxel_view;
@@ -22,18 +26,22 @@ use std::cell::Cell;
 
 use crate::error::Result;
 use crate::gpu::{self, Context, GpuTimer, Image, ImageDesc, Timing};
+use crate::scene::file::Filter;
 use crate::scene::{Light, Scene};
 use crate::voxel::{VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
+use bounce::BouncePass;
 use deferred::DeferredShadePass;
 use filter::FilterPass;
 pub use frame::View;
 use frame::{FrameState, FrameUniforms};
 use inject::InjectPass;
+use occupancy::OccupiedVoxels;
 use prepass::DepthPrepass;
 use radiance::RadianceVolume;
 use scene_gpu::SceneGpu;
 use shade::ShadePass;
 use shadow::ShadowPass;
+use temporal::{Source, TemporalBlend};
 use tonemap::TonemapPass;
 use volume_view::VolumeViewPass;
 
@@ -137,8 +145,6 @@ pub struct RenderOptions {
     pub view: View,
     pub gi: bool,
     pub tracing: Tracing,
-    /// Six directional mip chains instead of the thesis' isotropic one.
-    pub anisotropic: bool,
     /// A volume around a moving point; `None`: fitted to the scene.
     pub follow: Option<Follow>,
 }
@@ -151,7 +157,6 @@ impl Default for RenderOptions {
             view: View::Full,
             gi: true,
             tracing: Tracing::default(),
-            anisotropic: false,
             follow: None,
         }
     }
@@ -167,7 +172,10 @@ pub struct Renderer {
     shadow: ShadowPass,
     pub radiance: RadianceVolume,
     inject: InjectPass,
+    occupied: OccupiedVoxels,
+    temporal: TemporalBlend,
     filter: FilterPass,
+    bounce: Option<BouncePass>,
     prepass: DepthPrepass,
     shade: ShadePass,
     deferred: Option<DeferredShadePass>,
@@ -206,15 +214,20 @@ impl Renderer {
         let voxels = VoxelVolume::new(ctx, grid)?;
         let voxelizer = Voxelizer::new(ctx, &scene, &scene_gpu, &voxels, options.method)?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
-        let radiance = RadianceVolume::new(ctx, resolution)?;
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, options.anisotropic)?;
-        let filter = FilterPass::new(ctx, &radiance)?;
+        let gi = &scene.settings.gi;
+        let aniso = gi.filter == Filter::Aniso;
+        let radiance = RadianceVolume::new(ctx, resolution, gi.bounces > 1)?;
+        let occupied = OccupiedVoxels::new(ctx, grid.voxel_count() as u64)?;
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied)?;
+        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance)?;
+        let filter = FilterPass::new(ctx, &radiance, &voxels)?;
+        let bounce = (gi.bounces > 1)
+            .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, &occupied, aniso))
+            .transpose()?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
-        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, options.anisotropic)?;
+        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, aniso)?;
         let deferred = match options.tracing {
-            Tracing::Deferred => {
-                Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &targets, options.anisotropic)?)
-            }
+            Tracing::Deferred => Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &targets, aniso)?),
             Tracing::Forward => None,
         };
         let volume_view = VolumeViewPass::new(ctx, &scene_gpu, &voxels, &radiance, &targets)?;
@@ -227,7 +240,11 @@ impl Renderer {
                 grid.voxel * 1e3
             ));
         }
-        let texel = shadow_texel_size(&scene.light, &scene.mesh.bounds, scene.settings.shadow_resolution);
+        let texel = scene
+            .lights
+            .first()
+            .map(|l| shadow_texel_size(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
+            .unwrap_or(0.0);
         if texel > 0.7 * grid.voxel {
             notes.push(format!(
                 "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m; lit voxels may be missed during injection (raise shadow.resolution)",
@@ -245,7 +262,10 @@ impl Renderer {
             shadow,
             radiance,
             inject,
+            occupied,
+            temporal,
             filter,
+            bounce,
             prepass,
             shade,
             deferred,
@@ -266,12 +286,14 @@ impl Renderer {
             grid: &self.voxels.grid,
             mip_levels: self.radiance.levels,
             gi: &s.settings.gi,
+            cone_count: self.scene_gpu.cone_count,
+            bounce_cone_count: self.scene_gpu.bounce_cone_count,
             gi_on: self.options.gi,
             view: self.options.view,
             first_frame: self.frame_index.get() == 0,
             previous_origin: self.previous_origin.get(),
         };
-        let u = FrameUniforms::new(&s.camera, &s.light, &s.mesh.bounds, s.settings.shadow_resolution, &state);
+        let u = FrameUniforms::new(&s.camera, s.lights.first(), &s.mesh.bounds, s.settings.shadow_resolution, &state);
         self.scene_gpu.uniforms.write_pod(&u);
     }
 
@@ -282,11 +304,30 @@ impl Renderer {
         t.reset(cmd);
         t.span(cmd, "total", || {
             t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
-            t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
+            let light = !self.scene.lights.is_empty();
+            if light {
+                t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
+            }
+            let gi = &self.scene.settings.gi;
+            let (temporal, bounces, aniso) = (gi.temporal < 1.0, gi.bounces.max(1), gi.filter == Filter::Aniso);
+            let moment = gi.facing;
             t.span(cmd, "inject", || {
-                self.inject.record(cmd, scene, &self.radiance, self.scene.settings.gi.temporal < 1.0)
+                self.inject.record(cmd, scene, &self.radiance, &self.occupied, light);
+                if temporal {
+                    self.temporal.record_history(cmd, &self.radiance);
+                }
+                self.temporal.record(cmd, scene, Source::Injected, temporal && bounces == 1);
             });
-            t.span(cmd, "filter", || self.filter.record(cmd, self.options.anisotropic));
+            t.span(cmd, "filter", || self.filter.record(cmd, aniso, moment));
+            if let Some(b) = &self.bounce {
+                t.span(cmd, "bounces", || {
+                    for k in 1..bounces {
+                        b.record(cmd, scene, &self.radiance, &self.occupied);
+                        self.temporal.record(cmd, scene, Source::Bounced, temporal && k + 1 == bounces);
+                        self.filter.record(cmd, aniso, moment);
+                    }
+                });
+            }
             if self.options.view.is_volume() {
                 t.span(cmd, "volume view", || self.volume_view.record(cmd, scene, targets));
             } else if let Some(d) = &self.deferred {
@@ -344,7 +385,7 @@ impl Renderer {
                 &self.shadow,
                 &self.radiance,
                 &self.targets,
-                self.options.anisotropic,
+                self.scene.settings.gi.filter == Filter::Aniso,
             )?),
             Tracing::Forward => None,
         };

@@ -14,9 +14,10 @@ pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 pub struct RadianceVolume {
     pub injected: Image,
     pub radiance: Image,
-    /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z): level l of the
+    /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z), stacked along y in
+    /// one atlas with an empty block between neighbours (`config::ANISO_BLOCKS`): level l of the
     /// volume is their mip l - 1.
-    pub aniso: Vec<Image>,
+    pub aniso: Image,
     /// Per level-0 voxel, the side its injected light leaves from: the voxel's normal turned
     /// towards the light (packed like the voxel normals, high byte 1), or 0 where the voxel
     /// emits to every side. The directional chains use it so that a lit face is dark when seen
@@ -25,12 +26,18 @@ pub struct RadianceVolume {
     /// A copy of the previous frame's level 0, which the temporal blend reprojects (only when
     /// temporal filtering is on).
     pub history: Image,
+    /// Each extra bounce's level 0 before it is blended in (only with more than one bounce).
+    pub bounced: Option<Image>,
+    /// Where each texel's light leaves to: xyz the luminance-weighted sum of lit-side normals,
+    /// w the luminance (mip chain as the radiance's; `common/cone.glsl`, CONE_FLAG_FACING).
+    pub moment: Image,
     pub sampler: Sampler,
     pub levels: u32,
 }
 
 impl RadianceVolume {
-    pub fn new(ctx: &Arc<Context>, resolution: u32) -> Result<Self> {
+    /// `bounces`: also the target of the voxel-space bounce pass.
+    pub fn new(ctx: &Arc<Context>, resolution: u32, bounces: bool) -> Result<Self> {
         let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, RADIANCE_FORMAT) };
         let need = vk::FormatFeatureFlags::STORAGE_IMAGE | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
         if !props.optimal_tiling_features.contains(need) {
@@ -49,14 +56,17 @@ impl RadianceVolume {
             "radiance volume",
             ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
         )?;
-        let aniso = ["+x", "-x", "+y", "-y", "+z", "-z"]
-            .iter()
-            .map(|d| {
-                let desc =
-                    ImageDesc::d3(RADIANCE_FORMAT, (resolution / 2).max(1), storage | vk::ImageUsageFlags::SAMPLED);
-                Image::new(ctx, &format!("radiance {d}"), desc.mips((levels - 1).max(1)))
-            })
-            .collect::<Result<Vec<_>>>()?;
+        let chain = (resolution / 2).max(1);
+        let aniso = Image::new(
+            ctx,
+            "radiance directional chains",
+            ImageDesc::d3_extent(
+                RADIANCE_FORMAT,
+                vk::Extent3D { width: chain, height: chain * crate::config::ANISO_BLOCKS, depth: chain },
+                storage | vk::ImageUsageFlags::SAMPLED,
+            )
+            .mips((levels - 1).max(1)),
+        )?;
         let lit_side =
             Image::new(ctx, "lit side", ImageDesc::d3(crate::voxel::volume::VOXEL_FORMAT, resolution, storage))?;
         let history = Image::new(
@@ -64,9 +74,17 @@ impl RadianceVolume {
             "radiance history",
             ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED),
         )?;
+        let moment = Image::new(
+            ctx,
+            "radiance moment",
+            ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
+        )?;
+        let bounced = bounces
+            .then(|| Image::new(ctx, "bounced radiance", ImageDesc::d3(RADIANCE_FORMAT, resolution, storage)))
+            .transpose()?;
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
-            for img in [&injected, &radiance, &lit_side, &history].into_iter().chain(&aniso) {
+            for img in [&injected, &radiance, &lit_side, &history, &moment, &aniso].into_iter().chain(&bounced) {
                 gpu::clear_to_general(ctx, cmd, img, scope::NONE);
             }
         })?;
@@ -76,6 +94,8 @@ impl RadianceVolume {
             aniso,
             lit_side,
             history,
+            bounced,
+            moment,
             sampler: Sampler::linear_border(ctx, "radiance sampler")?,
             levels,
         })
@@ -90,24 +110,27 @@ impl RadianceVolume {
         }
     }
 
-    /// Descriptor infos for the six directional chains.
-    pub fn aniso_infos(&self) -> Vec<vk::DescriptorImageInfo> {
-        self.aniso
-            .iter()
-            .map(|a| vk::DescriptorImageInfo {
-                sampler: self.sampler.raw,
-                image_view: a.view.raw,
-                image_layout: vk::ImageLayout::GENERAL,
-            })
-            .collect()
+    /// Descriptor info for sampling the directional chains' atlas.
+    pub fn aniso_info(&self) -> vk::DescriptorImageInfo {
+        vk::DescriptorImageInfo { image_view: self.aniso.view.raw, ..self.sampled_info() }
     }
 
-    /// Writes the isotropic volume at `binding` and the six directional ones after it.
+    /// Descriptor info for sampling the moment's mip chain.
+    pub fn moment_info(&self) -> vk::DescriptorImageInfo {
+        vk::DescriptorImageInfo { image_view: self.moment.view.raw, ..self.sampled_info() }
+    }
+
+    /// Writes the isotropic volume at `binding`, the directional chains' atlas after it and then
+    /// the moment.
     pub fn write_to(&self, set: &crate::gpu::DescriptorSet, binding: u32) {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         set.write_images(binding, sampled, &[self.sampled_info()]);
-        for (i, info) in self.aniso_infos().into_iter().enumerate() {
-            set.write_images(binding + 1 + i as u32, sampled, &[info]);
-        }
+        set.write_images(binding + 1, sampled, &[self.aniso_info()]);
+        set.write_images(binding + 2, sampled, &[self.moment_info()]);
+    }
+
+    /// Where directional chain `d` starts in the atlas at chain mip `mip` (texels along y).
+    pub fn chain_offset(&self, d: u32, mip: u32) -> u32 {
+        2 * d * self.aniso.extent_at(mip).height / crate::config::ANISO_BLOCKS
     }
 }

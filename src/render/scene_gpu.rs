@@ -1,5 +1,6 @@
 //! The scene on the GPU: vertex and index buffers, the material buffer, textures (with mip
-//! chains) and descriptor set 0 that every scene-drawing pass binds (see `common/frame.glsl`).
+//! chains), the diffuse cone set, and descriptor set 0 that every scene-drawing pass binds (see
+//! `common/frame.glsl`).
 
 use std::sync::Arc;
 
@@ -91,6 +92,11 @@ impl MeshBuffers {
 pub struct SceneGpu {
     pub mesh: MeshBuffers,
     pub uniforms: Buffer,
+    /// The surfaces' and the voxel bounce's cone sets (MAX_CONES entries each; the frame
+    /// uniforms say how many are used).
+    pub cones: Buffer,
+    pub cone_count: u32,
+    pub bounce_cone_count: u32,
     _materials: Buffer,
     _textures: Vec<Image>,
     _sampler: Sampler,
@@ -160,6 +166,15 @@ impl SceneGpu {
             MemoryLocation::CpuToGpu,
         )?;
         let sampler = Sampler::linear_repeat(ctx, "material sampler")?;
+        let gi = &scene.settings.gi;
+        let cone_count = super::cones::cones(gi.cones).len() as u32;
+        let bounce_cone_count = super::cones::cones(gi.bounce_cones).len() as u32;
+        let cones = Buffer::from_slice(
+            ctx,
+            "diffuse cones",
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            &super::cones::buffer(gi.cones, gi.aperture, gi.bounce_cones),
+        )?;
 
         let all = vk::ShaderStageFlags::ALL;
         let set = DescriptorSet::new(
@@ -168,10 +183,12 @@ impl SceneGpu {
             &[
                 Binding::new(0, vk::DescriptorType::UNIFORM_BUFFER, all),
                 Binding::new(1, vk::DescriptorType::STORAGE_BUFFER, all),
+                Binding::new(2, vk::DescriptorType::STORAGE_BUFFER, all),
             ],
         )?;
         set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &uniforms);
         set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &materials);
+        set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &cones);
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frag = vk::ShaderStageFlags::ALL_GRAPHICS;
         let material_sets = DescriptorSet::new_many(
@@ -190,6 +207,9 @@ impl SceneGpu {
         Ok(SceneGpu {
             mesh,
             uniforms,
+            cones,
+            cone_count,
+            bounce_cone_count,
             _materials: materials,
             _textures: textures,
             _sampler: sampler,

@@ -39,7 +39,7 @@ impl ShadePass {
         let set = DescriptorSet::new(
             ctx,
             "shade inputs",
-            &(0..8).map(|b| Binding::new(b, sampled, frag)).collect::<Vec<_>>(),
+            &(0..4).map(|b| Binding::new(b, sampled, frag)).collect::<Vec<_>>(),
         )?;
         let shadow_sampler = Sampler::shadow(ctx, "shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);

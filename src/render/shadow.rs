@@ -34,6 +34,19 @@ impl ShadowPass {
         desc.depth_write = true;
         desc.depth_bias = Some((2.0, 1.0));
         let pipeline = Pipeline::graphics(ctx, &desc)?;
+        // Ready for sampling from the start: a scene without a shadowed light never renders it,
+        // but the shading passes still bind it.
+        ctx.submit_and_wait("shadow map layout", |cmd| {
+            gpu::image_barrier(
+                ctx,
+                cmd,
+                &map,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                scope::NONE,
+                scope::NONE,
+            )
+        })?;
         Ok(ShadowPass { ctx: ctx.clone(), pipeline, map })
     }
 

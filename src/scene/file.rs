@@ -19,25 +19,173 @@ pub struct SceneFile {
     pub gi: GiFile,
 }
 
-/// Cone-tracing and radiance settings (Freed 2018 §4.5.2 Listing 4.1, §4.7.2).
-#[derive(Debug, Clone, Deserialize)]
+/// Cone-tracing and radiance settings (Freed 2018 §4.5.2 Listing 4.1, §4.7.2; the model's
+/// choices are measured in docs/benchmarks.md, "Indirect light against the path tracer").
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct GiFile {
-    /// Maximum samples per cone.
+    /// Maximum samples per cone (a cap: cones end when opaque or outside the volume).
     pub steps: u32,
     /// Cone start offset along the surface normal, in voxels (against self-illumination).
     pub bias: f32,
-    /// Initial cone height, in voxels.
+    /// Initial distance along the cone, in voxels.
     pub cone_start: f32,
-    /// Added to the mip level each sample reads.
+    /// Added to the mip level each sample reads (after the level rule).
     pub lod_offset: f32,
     /// Weight of this frame's radiance against the previous frame's (1 = no temporal filter).
     pub temporal: f32,
+    /// Radiance mip filtering.
+    pub filter: Filter,
+    /// The diffuse cone set.
+    pub cones: ConeSet,
+    /// Each diffuse cone's half aperture as a share of its set's (for the cell sets, of the cone
+    /// that spans its cell's solid angle).
+    pub aperture: f32,
+    /// How the sampled level follows the cone diameter.
+    pub level: LevelRule,
+    /// Step length over the sampled level's texel size (Listing 4.1: 0.5, the cone's radius
+    /// with texels as wide as the cone).
+    pub step: f32,
+    /// Correct each sample's opacity for the step length (Crassin et al. 2011).
+    pub opacity_correction: bool,
+    /// Keep each sample's filter off the receiving surface (common/cone.glsl).
+    pub self_clamp: bool,
+    /// Hide light that leaves its surfaces away from the cone (the radiance moment volume).
+    pub facing: bool,
+    /// Light bounces: 1 gathers the injected direct light; each more adds a voxel-space pass.
+    pub bounces: u32,
+    /// The cone set of the voxel-space bounces (their light is gathered again by the surfaces,
+    /// so a wider, cheaper set serves).
+    pub bounce_cones: ConeSet,
+}
+
+/// Radiance mip filtering.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Filter {
+    /// The thesis' 8-child average (§4.4).
+    #[default]
+    Iso,
+    /// Six directional chains, composited front to back (Crassin et al. 2011).
+    Aniso,
+}
+
+/// How a cone sample's mip level follows the cone's diameter D (voxels).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LevelRule {
+    /// log2 D: texels as wide as the cone (Listing 4.1, Crassin et al. 2011).
+    #[default]
+    Diameter,
+    /// log2 (D / √3): a trilinear sample of level L spreads over a box-then-tent filter of
+    /// standard deviation 2^L / 2, which matches a disc-like cross-section of width D
+    /// (standard deviation D / √12) at 2^L = D / √3.
+    Footprint,
+}
+
+impl LevelRule {
+    /// The offset this rule adds to log2 D.
+    pub fn offset(self) -> f32 {
+        match self {
+            LevelRule::Diameter => 0.0,
+            LevelRule::Footprint => -0.5 * 3f32.log2(),
+        }
+    }
+}
+
+/// A named diffuse cone layout (the directions and weights are built in `render::cones`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ConeSet {
+    /// The thesis: one cone along the normal and four tilted 45°, all 45° wide, weighted by the
+    /// cosine of their axis and normalized (together they cover 38% of the hemisphere).
+    #[default]
+    Thesis5,
+    /// The thesis' five directions with cell weights and apertures.
+    Thesis5Cells,
+    /// Crassin et al. 2011: one along the normal and five tilted 60°, cell weights.
+    Crassin6,
+    /// Eight directions spread by cosine density (a Fibonacci spiral), cell weights.
+    Fib8,
+    /// Sixteen, likewise.
+    Fib16,
+    /// Thirty-two, likewise.
+    Fib32,
+}
+
+impl ConeSet {
+    pub const ALL: [ConeSet; 6] =
+        [ConeSet::Thesis5, ConeSet::Thesis5Cells, ConeSet::Crassin6, ConeSet::Fib8, ConeSet::Fib16, ConeSet::Fib32];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ConeSet::Thesis5 => "thesis5",
+            ConeSet::Thesis5Cells => "thesis5-cells",
+            ConeSet::Crassin6 => "crassin6",
+            ConeSet::Fib8 => "fib8",
+            ConeSet::Fib16 => "fib16",
+            ConeSet::Fib32 => "fib32",
+        }
+    }
+}
+
+impl std::str::FromStr for ConeSet {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        ConeSet::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| format!("unknown cone set '{s}' (thesis5|thesis5-cells|crassin6|fib8|fib16|fib32)"))
+    }
+}
+
+impl GiFile {
+    /// The model's switches as the shaders' `CONE_FLAG_*` bits (common/config.h).
+    pub fn cone_flags(&self) -> u32 {
+        use crate::config::{CONE_FLAG_FACING, CONE_FLAG_OPACITY_CORRECTION, CONE_FLAG_SELF_CLAMP};
+        (if self.opacity_correction { CONE_FLAG_OPACITY_CORRECTION } else { 0 })
+            | (if self.self_clamp { CONE_FLAG_SELF_CLAMP } else { 0 })
+            | (if self.facing { CONE_FLAG_FACING } else { 0 })
+    }
+
+    /// The model as the thesis has it (Listing 4.1, §4.4): the renderer's defaults before the
+    /// accuracy study.
+    pub fn thesis() -> Self {
+        GiFile {
+            steps: 48,
+            bias: 1.5,
+            cone_start: 1.0,
+            lod_offset: 0.0,
+            temporal: 1.0,
+            filter: Filter::Iso,
+            cones: ConeSet::Thesis5,
+            aperture: 1.0,
+            level: LevelRule::Diameter,
+            step: 0.5,
+            opacity_correction: false,
+            self_clamp: false,
+            facing: false,
+            bounces: 1,
+            bounce_cones: ConeSet::Thesis5Cells,
+        }
+    }
 }
 
 impl Default for GiFile {
+    /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
+    /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
+    /// back into the receiving surface, light hidden where it faces away, and eight narrow cones.
     fn default() -> Self {
-        GiFile { steps: 48, bias: 1.5, cone_start: 1.0, lod_offset: 0.0, temporal: 1.0 }
+        GiFile {
+            steps: 256,
+            filter: Filter::Aniso,
+            cones: ConeSet::Fib8,
+            aperture: 0.5,
+            level: LevelRule::Footprint,
+            self_clamp: true,
+            facing: true,
+            ..GiFile::thesis()
+        }
     }
 }
 

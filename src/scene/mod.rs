@@ -201,7 +201,9 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
     pub camera: Camera,
-    pub light: Light,
+    /// The lights that cast shadow-mapped direct light (at most one for now). Emissive
+    /// materials light the scene besides, through the radiance volume.
+    pub lights: Vec<Light>,
     pub settings: Settings,
     /// Problems that did not stop loading (missing textures, dropped triangles, ...).
     pub warnings: Vec<String>,
@@ -360,9 +362,9 @@ impl Scene {
             }
             None => frame_bounds(&mesh.bounds),
         };
-        let light = match file.lights.as_slice() {
-            [] => default_light(),
-            [l] => convert_light(path, l)?,
+        let lights = match file.lights.as_slice() {
+            [] => default_lights(&mesh, &materials),
+            [l] => vec![convert_light(path, l)?],
             more => {
                 return Err(Error::input(path, format!("{} lights given; vct renders one shadowed light", more.len())))
             }
@@ -373,7 +375,7 @@ impl Scene {
             gi: file.gi.clone(),
         };
         check_settings(path, &settings)?;
-        Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, light, settings, warnings })
+        Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, lights, settings, warnings })
     }
 
     fn from_obj(path: &Path, read: obj::ReadFn) -> Result<Scene> {
@@ -381,16 +383,8 @@ impl Scene {
         let (mesh, materials, textures) = obj::load_obj(path, read, &mut warnings)?;
         let camera = frame_bounds(&mesh.bounds);
         let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
-        Ok(Scene {
-            source: path.to_path_buf(),
-            mesh,
-            materials,
-            textures,
-            camera,
-            light: default_light(),
-            settings,
-            warnings,
-        })
+        let lights = default_lights(&mesh, &materials);
+        Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, lights, settings, warnings })
     }
 
     /// A scene made in code: `triangles` with one flat material each (by index into
@@ -423,7 +417,7 @@ impl Scene {
             mesh,
             materials,
             textures: Vec::new(),
-            light: default_light(),
+            lights: vec![default_light()],
             settings: Settings { voxel_resolution: 64, shadow_resolution: 1024, gi: GiSettings::default() },
             warnings: Vec::new(),
         }
@@ -453,11 +447,16 @@ fn check_settings(path: &Path, s: &Settings) -> Result<()> {
     if !(1..=512).contains(&g.steps) {
         return Err(Error::input(path, format!("gi.steps must be in 1..=512, got {}", g.steps)));
     }
+    if !(1..=8).contains(&g.bounces) {
+        return Err(Error::input(path, format!("gi.bounces must be in 1..=8, got {}", g.bounces)));
+    }
     for (name, v, lo, hi) in [
         ("gi.bias", g.bias, 0.0, 16.0),
         ("gi.cone_start", g.cone_start, 0.01, 16.0),
         ("gi.lod_offset", g.lod_offset, -4.0, 8.0),
         ("gi.temporal", g.temporal, 0.01, 1.0),
+        ("gi.step", g.step, 0.05, 2.0),
+        ("gi.aperture", g.aperture, 0.1, 2.0),
     ] {
         if !(v.is_finite() && (lo..=hi).contains(&v)) {
             return Err(Error::input(path, format!("{name} must be in {lo}..={hi}, got {v}")));
@@ -493,7 +492,18 @@ fn convert_light(path: &Path, l: &LightFile) -> Result<Light> {
     })
 }
 
-/// The light a bare OBJ gets: sunlight from above, slightly from the front (+z).
+/// The lights a scene without any gets: none when its materials emit (the emitters light it,
+/// as the classic Cornell box's ceiling quad does), else the default sun.
+pub fn default_lights(mesh: &Mesh, materials: &[Material]) -> Vec<Light> {
+    let emits = |d: &Draw| materials.get(d.material as usize).is_some_and(|m| m.emissive.max_element() > 0.0);
+    if mesh.draws.iter().any(emits) {
+        Vec::new()
+    } else {
+        vec![default_light()]
+    }
+}
+
+/// The light a bare OBJ without emitters gets: sunlight from above, slightly from the front (+z).
 pub fn default_light() -> Light {
     Light::Directional { direction: Vec3::new(-0.25, -1.0, -0.45).normalize(), irradiance: Vec3::splat(3.0) }
 }

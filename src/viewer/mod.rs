@@ -298,7 +298,9 @@ impl App {
         let cam = &mut r.renderer.scene.camera;
         cam.target = b.center();
         cam.eye = b.center() + glam::Vec3::new(angle.sin() * radius, b.size().y * 0.3, angle.cos() * radius);
-        swing_light(&mut r.renderer.scene.light, 0.03, 0.02 * angle.cos());
+        if let Some(light) = r.renderer.scene.lights.first_mut() {
+            swing_light(light, 0.03, 0.02 * angle.cos());
+        }
         if frame > 0 && frame.is_multiple_of(60) {
             let mut o = r.renderer.options;
             o.method = match o.method {
@@ -346,7 +348,9 @@ impl App {
         r.renderer.follow(eye)?;
         let (yaw, pitch) = light_step(&r.input, dt);
         if yaw != 0.0 || pitch != 0.0 {
-            swing_light(&mut r.renderer.scene.light, yaw, pitch);
+            if let Some(light) = r.renderer.scene.lights.first_mut() {
+                swing_light(light, yaw, pitch);
+            }
         }
         let (renderer, ctx) = (&r.renderer, &r.ctx);
         let mut timings = Ok(Vec::new());

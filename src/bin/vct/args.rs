@@ -84,6 +84,23 @@ pub struct BenchArgs {
     /// Voxel resolutions, e.g. 64,128,256.
     #[arg(long, value_delimiter = ',')]
     pub res: Option<Vec<u32>>,
+    /// Indirect light against the path tracer instead of the voxelizer sweep: FLIP, mean radiance
+    /// and per-region indirect light of the default model (the embedded Cornell box under its spot
+    /// and its directional light, plus the scenes given).
+    #[arg(long)]
+    pub accuracy: bool,
+    /// With --accuracy: every variant of the GI model study, not only the scene's own model.
+    #[arg(long, requires = "accuracy")]
+    pub study: bool,
+    /// With --study: only the variants whose name contains this text.
+    #[arg(long, requires = "study", value_name = "TEXT")]
+    pub only: Option<String>,
+    /// With --accuracy: light bounces of the renderer (overrides the scenes' gi.bounces).
+    #[arg(long, requires = "accuracy", value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub bounces: Option<u32>,
+    /// With --accuracy: bounces of the path-traced reference (default: the renderer's).
+    #[arg(long, requires = "accuracy", value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub ref_bounces: Option<u32>,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -124,6 +141,16 @@ pub struct SceneArgs {
     /// (0.01..=1, 1 = off; overrides the scene's gi.temporal).
     #[arg(long, value_name = "FACTOR", value_parser = temporal)]
     pub temporal: Option<f32>,
+    /// Radiance mip filtering: the thesis' isotropic 8-child average, or six directional chains
+    /// (overrides the scene's gi.filter).
+    #[arg(long, value_enum)]
+    pub filter: Option<FilterArg>,
+    /// Light bounces, 1..=8: each beyond the first adds a voxel-space gather (overrides gi.bounces).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub bounces: Option<u32>,
+    /// Diffuse cone set: thesis5|thesis5-cells|crassin6|fib16|fib32 (overrides gi.cones).
+    #[arg(long)]
+    pub cones: Option<vct::scene::file::ConeSet>,
 }
 
 pub fn float_in(text: &str, lo: f32, hi: f32) -> std::result::Result<f32, String> {
@@ -156,6 +183,19 @@ impl SceneArgs {
         }
         if let Some(t) = self.temporal {
             scene.settings.gi.temporal = t;
+        }
+        let gi = &mut scene.settings.gi;
+        if let Some(f) = self.filter {
+            gi.filter = match f {
+                FilterArg::Iso => vct::scene::file::Filter::Iso,
+                FilterArg::Aniso => vct::scene::file::Filter::Aniso,
+            };
+        }
+        if let Some(b) = self.bounces {
+            gi.bounces = b;
+        }
+        if let Some(c) = self.cones {
+            gi.cones = c;
         }
         Ok(scene)
     }
@@ -322,9 +362,6 @@ pub struct RenderArgs {
     /// Direct light only: skip cone tracing.
     #[arg(long)]
     pub no_gi: bool,
-    /// Radiance mip filtering: the thesis' isotropic 8-child average, or six directional chains.
-    #[arg(long, value_enum, default_value = "iso")]
-    pub filter: FilterArg,
     /// Where cone tracing runs: a fragment shader after a depth prepass, or compute over a G-buffer.
     #[arg(long, value_enum, default_value = "deferred")]
     pub tracing: TracingArg,

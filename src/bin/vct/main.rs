@@ -64,7 +64,6 @@ fn render(args: RenderArgs) -> Result<()> {
         view: args.view,
         gi: !args.no_gi,
         tracing,
-        anisotropic: args.filter == FilterArg::Aniso,
         follow: args.scene.follow(),
     };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
@@ -266,6 +265,10 @@ fn bench(args: BenchArgs) -> Result<()> {
         return Ok(());
     }
     let mut scenes = vec![("cornell".to_string(), Scene::embedded_default()?)];
+    if args.accuracy {
+        let directional = Path::new(vct::scene::EMBEDDED_DIR).join("scene-directional.toml");
+        scenes.push(("cornell-directional".to_string(), load_scene(Some(&directional))?));
+    }
     for p in &args.scenes {
         let name = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
         scenes.push((name, load_scene(Some(p))?));
@@ -280,6 +283,9 @@ fn bench(args: BenchArgs) -> Result<()> {
         ctx.info.name.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '-' }).collect();
     let date = time::OffsetDateTime::now_utc().date();
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from(format!("bench/{date}-{}", slug.trim_matches('-'))));
+    if args.accuracy {
+        return accuracy(&ctx, &args, scenes, &out);
+    }
     if args.stability {
         let bar = indicatif::ProgressBar::new_spinner();
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
@@ -335,6 +341,64 @@ fn bench(args: BenchArgs) -> Result<()> {
     }
     println!("bench took {:.0} s", start.elapsed().as_secs_f64());
     check_validation(&ctx)
+}
+
+/// `vct bench --accuracy`: the GI model against path-traced references.
+fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String, Scene)>, out: &Path) -> Result<()> {
+    use vct::bench::accuracy;
+    let resolutions = args.res.clone().unwrap_or(if args.quick { vec![32] } else { vec![128] });
+    let spp = args.spp.unwrap_or(if args.quick { 16 } else { 1024 });
+    let frames = args.frames.unwrap_or(if args.quick { 1 } else { 3 });
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    let progress = |m: &str| bar.set_message(m.to_string());
+    let cache = out.parent().unwrap_or(Path::new(".")).join("cache");
+    let start = std::time::Instant::now();
+    let mut rows = Vec::new();
+    for (name, mut scene) in scenes {
+        if let Some(b) = args.bounces {
+            scene.settings.gi.bounces = b;
+        }
+        let default = scene.settings.gi.clone();
+        let ref_bounces = args.ref_bounces.unwrap_or(default.bounces);
+        let judged = accuracy::Judged::new(&name, scene, ref_bounces, spp, &cache, &progress)
+            .with_context(|| format!("tracing the {name} references"))?;
+        let variants = if args.study {
+            accuracy::study_variants(&default)
+                .into_iter()
+                .map(|mut v| {
+                    if args.bounces.is_some() {
+                        v.gi.bounces = default.bounces;
+                    }
+                    v
+                })
+                .filter(|v| args.only.as_ref().is_none_or(|t| v.name.contains(t.as_str())))
+                .collect()
+        } else {
+            vec![accuracy::Variant { name: "default".into(), gi: default.clone() }]
+        };
+        for &res in &resolutions {
+            let direct = accuracy::direct_frame(ctx, &judged, res)?;
+            for v in &variants {
+                progress(&format!("{name} {res}³ {}", v.name));
+                let row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
+                    .with_context(|| format!("measuring {name} {} at {res}³", v.name))?;
+                println!(
+                    "{:<20} {:<34} {:>4}³ {:>9.1} ms  FLIP {:.4} (direct only {:.4})  mean {:.3}",
+                    name, v.name, res, row.frame_ms, row.flip, row.flip_direct_only, row.mean_ratio
+                );
+                rows.push(row);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    let dir = out.join("accuracy");
+    for f in accuracy::write(&dir, &rows, args.study)? {
+        println!("wrote {}", f.display());
+    }
+    println!("{}", accuracy::summary(&rows));
+    println!("accuracy bench took {:.0} s", start.elapsed().as_secs_f64());
+    check_validation(ctx)
 }
 
 fn devices() -> Result<()> {

@@ -1,0 +1,48 @@
+// Diffuse light gathered by the cone set (Freed 2018 §4.5.2; the set itself is built in
+// render/cones.rs): each cone of `cones` is a direction in the surface's tangent frame with its
+// cosine weight, and the weighted sum of the cones' radiance is the cosine-weighted mean of the
+// incoming radiance, so albedo times it is the outgoing diffuse radiance (albedo/pi * E). Shared
+// by the surface shading and the voxel-space bounce pass. The includer binds `radiance_volume`,
+// the radiance moment `radiance_moment` and the directional chains' atlas `radiance_aniso`, and
+// declares the ANISOTROPIC specialization constant.
+#ifndef VCT_GATHER_GLSL
+#define VCT_GATHER_GLSL
+#include "frame.glsl"
+#include "cone.glsl"
+
+// The frame's cone parameters for a point on a surface.
+ConeParams frame_cone_params() {
+    return ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_grid.x,
+                      frame.cone_model.y, uint(frame.cone_model.z), 0.5);
+}
+
+vec4 trace_frame_cone(vec3 uvw, vec3 n, vec3 dir, float tan_half, ConeParams p) {
+    const bool aniso = ANISOTROPIC;
+    return trace_cone_filtered(radiance_volume, radiance_moment, radiance_aniso, aniso, uvw, n, dir, tan_half, p);
+}
+
+// Returns the cosine-weighted mean incoming radiance (rgb) and occlusion (a) around `n` at `uvw`
+// with the cones `first` .. `first + count` of `cones` (the surface set, or the voxel bounce set).
+vec4 gather_cones(vec3 uvw, vec3 n, ConeParams p, int first, int count) {
+    vec3 t, b;
+    tangent_frame(n, t, b);
+    vec4 sum = vec4(0.0);
+    for (int i = first; i < first + count; i++) {
+        vec4 dw = cones[i].dir_weight;
+        vec3 dir = normalize(t * dw.x + b * dw.y + n * dw.z);
+        sum += dw.w * trace_frame_cone(uvw, n, dir, cones[i].shape.x, p);
+    }
+    return sum;
+}
+
+// The surfaces' gather (the diffuse cone set).
+vec4 gather_diffuse(vec3 uvw, vec3 n, ConeParams p) {
+    return gather_cones(uvw, n, p, 0, int(frame.cone_model.x));
+}
+
+// The voxel-space bounce's gather (its own, cheaper set, after the surfaces' in `cones`).
+vec4 gather_bounce(vec3 uvw, vec3 n, ConeParams p) {
+    return gather_cones(uvw, n, p, MAX_CONES, int(frame.cone_model.w));
+}
+
+#endif

@@ -1,0 +1,26 @@
+// The compact list of occupied voxels (render::occupancy; OPEngine's sparse voxel list): a count
+// and the packed coordinates (x | y << 10 | z << 20) of every occupied voxel, appended by the
+// resolve pass, so that passes over voxels run one invocation per occupied voxel (dispatched
+// indirectly) instead of one per voxel of the grid.
+#ifndef VCT_OCCUPIED_GLSL
+#define VCT_OCCUPIED_GLSL
+
+#ifndef OCCUPIED_SET
+#define OCCUPIED_SET 1
+#endif
+
+layout(set = OCCUPIED_SET, binding = OCCUPIED_BINDING, std430) buffer Occupied {
+    uint count;
+    uint pad0, pad1, pad2;
+    uint voxels[];
+} occupied;
+
+uint pack_voxel(ivec3 v) {
+    return uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);
+}
+
+ivec3 unpack_voxel(uint p) {
+    return ivec3(p & 1023u, (p >> 10) & 1023u, (p >> 20) & 1023u);
+}
+
+#endif

@@ -1,0 +1,69 @@
+#version 460
+// Multiple bounces in voxel space (Wicked Engine's VXGI, Part 4; Crassin et al. 2011 §6): each
+// occupied voxel gathers the previous bounce's filtered radiance with the
+// bounce cone set (gi.bounce_cones: wider, so cheaper, than the surfaces') around its lit side (the voxel normal turned towards the light, else the
+// voxel normal) and adds albedo times it to its own direct light and emission. The result is
+// the next bounce's level 0; the frame filters it again and shades from it. A voxel lit only by
+// bounced light gets its gathering side recorded as its lit side, so the anisotropic filter
+// keeps it dark seen from behind. One invocation per occupied voxel (common/occupied.glsl),
+// dispatched indirectly: empty voxels stay as the pass's clear left them.
+#include "frame.glsl"
+#define OCCUPIED_BINDING 8
+#include "occupied.glsl"
+
+layout(local_size_x = WORKGROUP_1D) in;
+layout(constant_id = 0) const bool ANISOTROPIC = false;
+layout(set = 1, binding = 0, r32ui) uniform readonly uimage3D voxel_albedo;
+layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_normal;
+layout(set = 1, binding = 2, r32ui) uniform uimage3D lit_side;
+layout(set = 1, binding = 3, rgba16f) uniform readonly image3D injected;
+layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D bounced;
+layout(set = 1, binding = 5) uniform sampler3D radiance_volume;
+layout(set = 1, binding = 6) uniform sampler3D radiance_aniso;
+layout(set = 1, binding = 7) uniform sampler3D radiance_moment;
+
+#include "gather.glsl"
+
+vec3 unpack_unit(uint p) {
+    return vec3(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
+}
+
+void main() {
+    if (gl_GlobalInvocationID.x >= occupied.count) return;
+    ivec3 v = unpack_voxel(occupied.voxels[gl_GlobalInvocationID.x]);
+    ivec3 size = imageSize(bounced);
+    uint a = imageLoad(voxel_albedo, v).r;
+    vec4 own = imageLoad(injected, v);
+    uint side = imageLoad(lit_side, v).r;
+    bool lit = (side >> 24) != 0u;
+    vec3 n = lit ? unpack_unit(side) : unpack_unit(imageLoad(voxel_normal, v).r);
+    if (dot(n, n) < 1e-6) {
+        imageStore(bounced, v, own);
+        return;
+    }
+    n = normalize(n);
+    vec3 albedo = vec3(float(a & 0xffu), float((a >> 8) & 0xffu), float((a >> 16) & 0xffu)) / 255.0;
+    vec3 uvw = (vec3(v) + 0.5) / vec3(size);
+    // From a voxel's centre: its surface may lie half a voxel above it, with a second layer of
+    // the same wall above that (a wall on a voxel boundary), so the cones start a voxel further
+    // out and keep their filters 1.5 voxels clear (common/cone.glsl, self_clamp_level).
+    ConeParams p = frame_cone_params();
+    p.bias += 1.0;
+    p.surface = 1.5;
+    vec4 gathered = gather_bounce(uvw, n, p);
+    // A voxel no light reaches directly has no lit side, and a mesh normal may point either way
+    // (surfaces are two-sided): it gathers on both sides and keeps the brighter, the side its
+    // light then leaves from.
+    if (!lit) {
+        vec4 back = gather_bounce(uvw, -n, p);
+        if (dot(back.rgb, vec3(1.0)) > dot(gathered.rgb, vec3(1.0))) {
+            gathered = back;
+            n = -n;
+        }
+    }
+    imageStore(bounced, v, vec4(own.rgb + albedo * gathered.rgb, own.a));
+    if (!lit) {
+        uvec3 q = uvec3(round((n * 0.5 + 0.5) * 255.0));
+        imageStore(lit_side, v, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
+    }
+}

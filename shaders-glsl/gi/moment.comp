@@ -1,0 +1,29 @@
+#version 460
+// The radiance moment's level 0 (common/cone.glsl, CONE_FLAG_FACING): per voxel, the luminance
+// of the light it reflects times its lit side (the voxel normal turned towards the light, or the
+// side it gathered bounced light on), and its whole luminance. Emitted light leaves to every side
+// and adds to the luminance only. The mip filter then averages it like the radiance.
+#include "config.h"
+#include "rgb9e5.glsl"
+
+layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
+layout(set = 0, binding = 0, rgba16f) uniform readonly image3D radiance;
+layout(set = 0, binding = 1, r32ui) uniform readonly uimage3D lit_side;
+layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D voxel_emission;
+layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D moment;
+
+const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, imageSize(moment)))) return;
+    float total = dot(imageLoad(radiance, v).rgb, LUMA);
+    uint side = imageLoad(lit_side, v).r;
+    vec3 m = vec3(0.0);
+    if ((side >> 24) != 0u) {
+        vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
+        float emitted = dot(decode_rgb9e5(imageLoad(voxel_emission, v).r), LUMA);
+        m = normalize(n) * max(total - emitted, 0.0);
+    }
+    imageStore(moment, v, vec4(m, total));
+}

@@ -1,0 +1,444 @@
+//! `vct bench --accuracy`: indirect light against the path tracer. For each scene it traces
+//! (and caches) a reference with as many bounces as the renderer's frame and a direct-light-only
+//! reference, splits the image into regions from a G-buffer of the reference's own primary hits
+//! (material, normal and plane: one region per wall, box face or floor), and for every model
+//! variant measures the frame's GPU time beside its accuracy — FLIP, the image's mean radiance
+//! over the reference's, and each region's indirect light (full minus direct, on both sides)
+//! over the reference's. The study's variants are the model choices the docs chart.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::Vec3;
+use serde::Serialize;
+
+use super::reference_cached;
+use crate::error::{Error, Result};
+use crate::gpu::{timer::median, Context};
+use crate::reference::metrics;
+use crate::reference::pathtrace::{PathTracer, PrimaryHit};
+use crate::render::{RenderOptions, Renderer, View};
+use crate::scene::file::{ConeSet, Filter, GiFile, LevelRule};
+use crate::scene::Scene;
+use crate::voxel::{Coverage, VoxelizeMethod};
+
+const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+
+/// Image regions: pixels grouped by what they see.
+pub struct RegionMap {
+    pub labels: Vec<String>,
+    /// The region of each pixel (None: background, a region too small to judge, or a pixel on
+    /// a region's border, where the renderer's and the reference's edges may differ).
+    pub of_pixel: Vec<Option<usize>>,
+}
+
+/// Regions of a frame from its primary hits: the same material, normal (to about 4°) and
+/// plane (to 1% of the scene's size); the border pixels of each are dropped, and regions under
+/// `min_share` of the image are not judged.
+pub fn regions(scene: &Scene, hits: &[Option<PrimaryHit>], min_share: f32) -> RegionMap {
+    let (w, h) = (scene.camera.width as usize, scene.camera.height as usize);
+    let size = scene.mesh.bounds.size().length().max(1e-6);
+    let key = |hit: &PrimaryHit| {
+        let n = hit.normal;
+        let q = (n * 16.0).round();
+        (hit.material, q.x as i32, q.y as i32, q.z as i32, (n.dot(hit.position) / (0.01 * size)).round() as i64)
+    };
+    let keys: Vec<_> = hits.iter().map(|h| h.as_ref().map(key)).collect();
+    let mut index: HashMap<_, usize> = HashMap::new();
+    let mut members: Vec<Vec<usize>> = Vec::new();
+    let mut first_hit: Vec<PrimaryHit> = Vec::new();
+    for y in 1..h.saturating_sub(1) {
+        for x in 1..w.saturating_sub(1) {
+            let i = y * w + x;
+            let Some(k) = keys[i] else { continue };
+            if [i - 1, i + 1, i - w, i + w].iter().any(|&j| keys[j] != Some(k)) {
+                continue;
+            }
+            let r = *index.entry(k).or_insert_with(|| {
+                members.push(Vec::new());
+                first_hit.push(hits[i].expect("a key comes from a hit"));
+                members.len() - 1
+            });
+            members[r].push(i);
+        }
+    }
+    let min = ((w * h) as f32 * min_share).max(16.0) as usize;
+    let mut order: Vec<usize> = (0..members.len()).filter(|&r| members[r].len() >= min).collect();
+    order.sort_by_key(|&r| std::cmp::Reverse(members[r].len()));
+    let mut of_pixel = vec![None; w * h];
+    let mut labels = Vec::new();
+    for (new, &r) in order.iter().enumerate() {
+        for &i in &members[r] {
+            of_pixel[i] = Some(new);
+        }
+        let hit = first_hit[r];
+        let name = scene.materials.get(hit.material as usize).map(|m| m.name.as_str()).unwrap_or("?");
+        let (face, axis) = facing(hit.normal);
+        labels.push(format!("{name} {face} at {}={:.2}", ["x", "y", "z"][axis], hit.position[axis]));
+    }
+    RegionMap { labels, of_pixel }
+}
+
+/// "+y", "-x", ... for the axis a normal most nearly follows (a "~" where it is tilted), and
+/// that axis.
+fn facing(n: Vec3) -> (String, usize) {
+    let a = n.abs();
+    let axis = if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    };
+    let v = n[axis];
+    let name = ["x", "y", "z"][axis];
+    (format!("{}{name}{}", if v >= 0.0 { "+" } else { "-" }, if v.abs() < 0.99 { "~" } else { "" }), axis)
+}
+
+/// Mean linear radiance of each region.
+pub fn region_means(map: &RegionMap, image: &[Vec3]) -> Vec<Vec3> {
+    let mut sum = vec![(Vec3::ZERO, 0usize); map.labels.len()];
+    for (p, r) in image.iter().zip(&map.of_pixel) {
+        if let Some(r) = r {
+            sum[*r].0 += *p;
+            sum[*r].1 += 1;
+        }
+    }
+    sum.into_iter().map(|(s, n)| s / n.max(1) as f32).collect()
+}
+
+/// A scene and the references it is judged against.
+pub struct Judged {
+    pub name: String,
+    pub scene: Scene,
+    /// Path-traced with the renderer's bounces.
+    pub full: Vec<Vec3>,
+    pub full_rgb: Vec<u8>,
+    /// Path-traced direct light only (plus what emitters show the camera directly).
+    pub direct: Vec<Vec3>,
+    pub regions: RegionMap,
+    pub noise: f32,
+    pub bounces: u32,
+}
+
+impl Judged {
+    pub fn new(
+        name: &str,
+        scene: Scene,
+        bounces: u32,
+        spp: u32,
+        cache: &Path,
+        progress: &dyn Fn(&str),
+    ) -> Result<Self> {
+        let (full, info) = reference_cached(&scene, name, bounces, spp, cache, progress)?;
+        let (direct, _) = reference_cached(&scene, name, 0, spp.min(64), cache, progress)?;
+        let regions = regions(&scene, &PathTracer::new(&scene).primary_hits(), 0.004);
+        Ok(Judged {
+            name: name.into(),
+            full_rgb: metrics::tonemap(&full),
+            full,
+            direct,
+            regions,
+            noise: info.relative_noise,
+            scene,
+            bounces,
+        })
+    }
+}
+
+/// One region's indirect light, renderer against reference.
+#[derive(Clone, Debug, Serialize)]
+pub struct RegionRow {
+    pub region: String,
+    pub pixels: usize,
+    pub reference: [f32; 3],
+    pub vct: [f32; 3],
+    /// Luminance ratio vct / reference.
+    pub ratio: f32,
+}
+
+/// One variant on one scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct AccuracyRow {
+    pub scene: String,
+    pub variant: String,
+    pub resolution: u32,
+    pub bounces: u32,
+    pub frame_ms: f64,
+    pub flip: f32,
+    /// FLIP of the direct-light-only frame against the same reference.
+    pub flip_direct_only: f32,
+    /// Mean radiance (luminance) over the reference's.
+    pub mean_ratio: f32,
+    pub regions: Vec<RegionRow>,
+    pub reference_noise: f32,
+    #[serde(skip)]
+    pub flip_map: Vec<u8>,
+    /// The reference's indirect light beside the renderer's (RGB8, twice as wide), tone-mapped
+    /// alike after scaling by four so that dim light shows.
+    #[serde(skip)]
+    pub indirect_pair: Vec<u8>,
+    #[serde(skip)]
+    pub width: u32,
+    #[serde(skip)]
+    pub height: u32,
+}
+
+/// A named change to the GI model.
+#[derive(Clone)]
+pub struct Variant {
+    pub name: String,
+    pub gi: GiFile,
+}
+
+fn scaled(img: &[Vec3], k: f32) -> Vec<Vec3> {
+    img.iter().map(|p| p.max(Vec3::ZERO) * k).collect()
+}
+
+fn lum(v: Vec3) -> f32 {
+    v.dot(LUMA)
+}
+
+fn mean_lum(img: &[Vec3]) -> f32 {
+    img.iter().map(|p| lum(*p)).sum::<f32>() / img.len().max(1) as f32
+}
+
+/// Renders `scene` with `options`: median frame GPU ms over `frames` after one warm-up, and the
+/// last frame's linear radiance and RGB8.
+pub fn render_timed(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    options: RenderOptions,
+    frames: u32,
+) -> Result<(f64, Vec<Vec3>, Vec<u8>)> {
+    let r = Renderer::new(ctx, scene.clone(), options)?;
+    r.render()?;
+    let runs: Vec<_> = (0..frames.max(1)).map(|_| r.render()).collect::<Result<_>>()?;
+    let total = median(&runs).iter().find(|t| t.pass == "total").map(|t| t.ms).unwrap_or(0.0);
+    let f = r.read_frame()?;
+    Ok((total, f.linear(), f.rgb8()))
+}
+
+/// The voxelizer the harness renders with: the rasterized path (its coverage is exact on these
+/// scenes, so the figures judge the light, not the voxels).
+pub fn harness_method() -> VoxelizeMethod {
+    VoxelizeMethod::raster(Coverage::Msaa)
+}
+
+/// Measures `variant` on `j` at `resolution`; `direct` is the renderer's direct-light frame.
+pub fn measure(
+    ctx: &Arc<Context>,
+    j: &Judged,
+    direct: &(Vec<Vec3>, Vec<u8>),
+    variant: &Variant,
+    resolution: u32,
+    frames: u32,
+) -> Result<AccuracyRow> {
+    let mut scene = j.scene.clone();
+    scene.settings.gi = variant.gi.clone();
+    let options = RenderOptions { method: harness_method(), resolution: Some(resolution), ..Default::default() };
+    let (ms, full, rgb) = render_timed(ctx, &scene, options, frames)?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let (flip, flip_map) = metrics::flip(&j.full_rgb, &rgb, w, h);
+    let (flip_direct_only, _) = metrics::flip(&j.full_rgb, &direct.1, w, h);
+    let indirect = |f: &[Vec3], d: &[Vec3]| -> Vec<Vec3> { f.iter().zip(d).map(|(a, b)| *a - *b).collect() };
+    let (ref_img, vct_img) = (indirect(&j.full, &j.direct), indirect(&full, &direct.0));
+    let ref_ind = region_means(&j.regions, &ref_img);
+    let vct_ind = region_means(&j.regions, &vct_img);
+    let mut indirect_pair = Vec::with_capacity((6 * w * h) as usize);
+    let (a, b) = (metrics::tonemap(&scaled(&ref_img, 4.0)), metrics::tonemap(&scaled(&vct_img, 4.0)));
+    for y in 0..h as usize {
+        let row = 3 * w as usize;
+        indirect_pair.extend_from_slice(&a[y * row..(y + 1) * row]);
+        indirect_pair.extend_from_slice(&b[y * row..(y + 1) * row]);
+    }
+    let counts = j.regions.of_pixel.iter().flatten().fold(vec![0usize; j.regions.labels.len()], |mut c, r| {
+        c[*r] += 1;
+        c
+    });
+    let regions = j
+        .regions
+        .labels
+        .iter()
+        .enumerate()
+        .map(|(i, label)| RegionRow {
+            region: label.clone(),
+            pixels: counts[i],
+            reference: ref_ind[i].into(),
+            vct: vct_ind[i].into(),
+            ratio: lum(vct_ind[i]) / lum(ref_ind[i]).max(1e-9),
+        })
+        .collect();
+    Ok(AccuracyRow {
+        scene: j.name.clone(),
+        variant: variant.name.clone(),
+        resolution,
+        bounces: variant.gi.bounces,
+        frame_ms: ms,
+        flip,
+        flip_direct_only,
+        mean_ratio: mean_lum(&full) / mean_lum(&j.full).max(1e-9),
+        regions,
+        reference_noise: j.noise,
+        flip_map,
+        indirect_pair,
+        width: w,
+        height: h,
+    })
+}
+
+/// The renderer's direct-light frame of `j` (it does not depend on the GI model).
+pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(Vec<Vec3>, Vec<u8>)> {
+    let options = RenderOptions {
+        method: harness_method(),
+        resolution: Some(resolution),
+        view: View::Direct,
+        gi: false,
+        ..Default::default()
+    };
+    let (_, lin, rgb) = render_timed(ctx, &j.scene, options, 1)?;
+    Ok((lin, rgb))
+}
+
+/// The study's variants: the thesis' model, then each choice added in turn up to the default
+/// (a staircase: every row differs from the one above by one choice), the cone sets on top of
+/// the default, and the default with each of its choices undone or changed.
+pub fn study_variants(default: &GiFile) -> Vec<Variant> {
+    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi };
+    // The step cap is no model choice: every variant gets the default's.
+    let t = GiFile { bounces: default.bounces, steps: default.steps, ..GiFile::thesis() };
+    let aniso = GiFile { filter: Filter::Aniso, ..t.clone() };
+    let footprint = GiFile { level: LevelRule::Footprint, ..aniso.clone() };
+    let clamp = GiFile { self_clamp: true, ..footprint.clone() };
+    let facing = GiFile { facing: true, ..clamp.clone() };
+    let mut out = vec![
+        v("thesis", t.clone()),
+        v("+ anisotropic", aniso),
+        v("+ footprint level", footprint),
+        v("+ self clamp", clamp),
+        v("+ facing", facing.clone()),
+    ];
+    for (cones, aperture) in [
+        (ConeSet::Thesis5, 0.7),
+        (ConeSet::Thesis5Cells, 1.0),
+        (ConeSet::Thesis5Cells, 0.6),
+        (ConeSet::Crassin6, 1.0),
+        (ConeSet::Crassin6, 0.6),
+        (ConeSet::Fib8, 1.0),
+        (ConeSet::Fib8, 0.7),
+        (ConeSet::Fib8, 0.5),
+        (ConeSet::Fib16, 0.5),
+        (ConeSet::Fib32, 1.0),
+    ] {
+        let gi = GiFile { cones, aperture, ..facing.clone() };
+        if gi != *default {
+            out.push(v(&format!("+ facing, {} x{aperture}", cones.name()), gi));
+        }
+    }
+    out.push(v("default", default.clone()));
+    let d = || default.clone();
+    out.push(v("default, isotropic", GiFile { filter: Filter::Iso, ..d() }));
+    out.push(v("default, diameter level", GiFile { level: LevelRule::Diameter, ..d() }));
+    out.push(v("default, no self clamp", GiFile { self_clamp: false, ..d() }));
+    out.push(v("default, no facing", GiFile { facing: false, ..d() }));
+    out.push(v("default, opacity correction", GiFile { opacity_correction: true, ..d() }));
+    out.push(v("default, step 0.25", GiFile { step: 0.25, ..d() }));
+    out.push(v("default, step 1", GiFile { step: 1.0, ..d() }));
+    out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
+    if default.bounces > 1 {
+        for cones in ConeSet::ALL {
+            if cones != default.bounce_cones {
+                out.push(v(&format!("default, bounce cones {}", cones.name()), GiFile { bounce_cones: cones, ..d() }));
+            }
+        }
+    }
+    out
+}
+
+/// Markdown tables of the rows: the summary per scene and variant, then each row's regions.
+pub fn summary(rows: &[AccuracyRow]) -> String {
+    let mut s = String::from(
+        "| scene | variant | N | bounces | frame ms | FLIP | direct-only FLIP | FLIP / direct-only | mean / reference | reference noise |\n|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {:.1} | {:.3} | {:.3} | {:.0}% | {:.3} | {:.2}% |\n",
+            r.scene,
+            r.variant,
+            r.resolution,
+            r.bounces,
+            r.frame_ms,
+            r.flip,
+            r.flip_direct_only,
+            100.0 * r.flip / r.flip_direct_only.max(1e-9),
+            r.mean_ratio,
+            100.0 * r.reference_noise
+        ));
+    }
+    for r in rows {
+        s.push_str(&format!(
+            "\nIndirect light per region, {} {} {}³ (full minus direct, linear):\n\n| region | pixels | reference | vct | ratio |\n|---|---|---|---|---|\n",
+            r.scene, r.variant, r.resolution
+        ));
+        for g in &r.regions {
+            let f = |c: [f32; 3]| format!("{:.4} {:.4} {:.4}", c[0], c[1], c[2]);
+            s.push_str(&format!(
+                "| {} | {} | {} | {} | {:.2} |\n",
+                g.region,
+                g.pixels,
+                f(g.reference),
+                f(g.vct),
+                g.ratio
+            ));
+        }
+    }
+    s
+}
+
+/// Writes accuracy.json, accuracy.csv, summary.md, the FLIP maps and indirect-light comparisons
+/// (of every row, or with `maps_of_defaults` of the thesis' and the default model only) and the
+/// speed-against-accuracy chart into `dir`.
+pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
+    let put = |name: &str, text: &str| -> Result<PathBuf> {
+        let p = dir.join(name);
+        std::fs::write(&p, text).map_err(|source| Error::Io { path: p.clone(), source })?;
+        Ok(p)
+    };
+    let mut files = Vec::new();
+    let json =
+        serde_json::to_string_pretty(rows).map_err(|e| Error::input(dir.join("accuracy.json"), e.to_string()))?;
+    files.push(put("accuracy.json", &json)?);
+    let mut csv =
+        String::from("scene,variant,resolution,bounces,frame_ms,flip,flip_direct_only,mean_ratio,worst_region_ratio\n");
+    for r in rows {
+        let worst =
+            r.regions
+                .iter()
+                .map(|g| g.ratio)
+                .fold(1.0f32, |w, x| if (x - 1.0).abs() > (w - 1.0).abs() { x } else { w });
+        csv.push_str(&format!(
+            "{},\"{}\",{},{},{:.3},{:.5},{:.5},{:.4},{:.4}\n",
+            r.scene, r.variant, r.resolution, r.bounces, r.frame_ms, r.flip, r.flip_direct_only, r.mean_ratio, worst
+        ));
+    }
+    files.push(put("accuracy.csv", &csv)?);
+    files.push(put("summary.md", &summary(rows))?);
+    for r in rows.iter().filter(|r| !maps_of_defaults || r.variant == "default" || r.variant == "thesis") {
+        let slug: String = format!("flip-{}-{}-{}", r.scene, r.variant, r.resolution)
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+            .collect();
+        let p = dir.join(format!("{slug}.png"));
+        image::save_buffer(&p, &r.flip_map, r.width, r.height, image::ColorType::Rgb8)
+            .map_err(|source| Error::Image { path: p.clone(), source })?;
+        files.push(p);
+        let p = dir.join(format!("{}.png", slug.replacen("flip-", "indirect-", 1)));
+        image::save_buffer(&p, &r.indirect_pair, 2 * r.width, r.height, image::ColorType::Rgb8)
+            .map_err(|source| Error::Image { path: p.clone(), source })?;
+        files.push(p);
+    }
+    files.extend(super::charts::draw_accuracy(dir, rows)?);
+    Ok(files)
+}
