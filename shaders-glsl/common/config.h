@@ -38,6 +38,10 @@
 #define VOXEL_FLAG_MIN_LEVEL 1
 // Rasterized path: write every voxel layer the triangle's plane spans over the pixel.
 #define VOXEL_FLAG_DEPTH_SPAN 2
+// Rasterized path: conservative coverage without the extension (Hasselgren et al. 2005): the
+// geometry shader moves each edge out by half a pixel diagonal, the fragment shader discards
+// pixels outside the triangle's bounding box (and tests every voxel exactly).
+#define VOXEL_FLAG_CONSERVATIVE 4
 
 // Global illumination (Freed 2018 §4.3-4.5).
 // Diffuse cones: the largest cone set (render::cones), each cone a direction in the surface's

@@ -6,6 +6,7 @@
 
 pub mod accuracy;
 pub mod charts;
+pub mod hostile;
 pub mod stability;
 
 use std::collections::hash_map::DefaultHasher;
@@ -89,11 +90,16 @@ pub struct ReferenceInfo {
     pub relative_noise: f32,
 }
 
-/// The voxelizers a device can run: tessellation, rasterized with MSAA and without, and
-/// hardware-conservative rasterization where the extension is offered.
+/// The voxelizers a device can run: tessellation, rasterized with MSAA, without, and
+/// conservative by a grown triangle, and hardware-conservative rasterization where the
+/// extension is offered.
 pub fn methods(ctx: &Context) -> Vec<VoxelizeMethod> {
-    let mut m =
-        vec![VoxelizeMethod::tess(), VoxelizeMethod::raster(Coverage::Msaa), VoxelizeMethod::raster(Coverage::None)];
+    let mut m = vec![
+        VoxelizeMethod::tess(),
+        VoxelizeMethod::raster(Coverage::Msaa),
+        VoxelizeMethod::raster(Coverage::None),
+        VoxelizeMethod::raster(Coverage::Conservative),
+    ];
     if ctx.info.features.conservative_rasterization {
         m.push(VoxelizeMethod::raster(Coverage::Hardware));
     }
@@ -132,7 +138,10 @@ pub fn subdivide_uniform(mesh: &Mesh, levels: u32) -> Mesh {
 }
 
 /// Bumped when the path tracer's estimator changes, so cached references are traced again.
-const REFERENCE_VERSION: u32 = 3;
+const REFERENCE_VERSION: u32 = 2;
+/// The same for its emitter sampling, which only scenes with emissive materials use (3: the
+/// emitter drawn with one random number, not a fresh one per step of the search).
+const EMITTER_SAMPLING_VERSION: u32 = 3;
 
 /// The path-traced reference of `scene` with `bounces` bounces, from the cache when it is there.
 pub fn reference_cached(
@@ -144,8 +153,10 @@ pub fn reference_cached(
     progress: &dyn Fn(&str),
 ) -> Result<(Vec<Vec3>, ReferenceInfo)> {
     let mut h = DefaultHasher::new();
+    let emits = scene.materials.iter().any(|m| m.emissive.max_element() > 0.0);
+    let version = if emits { EMITTER_SAMPLING_VERSION } else { REFERENCE_VERSION };
     format!(
-        "{REFERENCE_VERSION}|{:?}|{}|{}|{:?}|{:?}|{:?}|{spp}|{bounces}",
+        "{version}|{:?}|{}|{}|{:?}|{:?}|{:?}|{spp}|{bounces}",
         scene.source,
         scene.mesh.triangle_count(),
         scene.mesh.vertices.len(),

@@ -19,7 +19,7 @@ use serde::Serialize;
 
 use crate::error::Result;
 use crate::gpu::Context;
-use crate::reference::coverage::RefGrid;
+use crate::reference::coverage::{Accuracy, RefGrid};
 use crate::render::{Follow, RenderOptions, Renderer, View};
 use crate::scene::file::{Filter, GiFile};
 use crate::scene::{Camera, Light, Scene};
@@ -45,11 +45,16 @@ pub struct Regime {
     pub series: Vec<Series>,
 }
 
-fn recall(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid) -> Result<f64> {
+/// Recall, precision and IoU of `method` on `scene` in `grid` against the exact coverage.
+pub fn voxel_accuracy(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid) -> Result<Accuracy> {
     let run = voxelize_in(ctx, scene, method, grid, 1)?;
     let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
     let cov = RefGrid { origin: grid.origin, voxel: grid.voxel, n: grid.resolution }.coverage(&tris, 1e-3);
-    Ok(cov.accuracy(&run.occupied()).recall)
+    Ok(cov.accuracy(&run.occupied()))
+}
+
+fn recall(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid) -> Result<f64> {
+    Ok(voxel_accuracy(ctx, scene, method, grid)?.recall)
 }
 
 fn unit_grid(n: u32) -> VoxelGrid {
@@ -91,7 +96,7 @@ pub fn raster_cracks(ctx: &Arc<Context>, scales: &[f32]) -> Result<Regime> {
     let scene = Scene::embedded_default()?;
     let grid = VoxelGrid::fit(&scene.mesh.bounds, 64)?;
     let mut series = Vec::new();
-    for coverage in [Coverage::None, Coverage::Msaa] {
+    for coverage in [Coverage::None, Coverage::Msaa, Coverage::Conservative] {
         let mut points = Vec::new();
         for &s in scales {
             let m = VoxelizeMethod::Raster { coverage, viewport_scale: s, depth_span: true };
@@ -113,7 +118,12 @@ pub fn raster_cracks(ctx: &Arc<Context>, scales: &[f32]) -> Result<Regime> {
 /// Regime 2b: 400 random triangles of a given size (voxels) in a 32³ grid.
 pub fn subvoxel_triangles(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
     let mut series: Vec<Series> = Vec::new();
-    let methods = [tess(true), VoxelizeMethod::raster(Coverage::Msaa), VoxelizeMethod::raster(Coverage::None)];
+    let methods = [
+        tess(true),
+        VoxelizeMethod::raster(Coverage::Msaa),
+        VoxelizeMethod::raster(Coverage::None),
+        VoxelizeMethod::raster(Coverage::Conservative),
+    ];
     for m in methods {
         series.push(Series { label: m.label(), points: Vec::new() });
     }

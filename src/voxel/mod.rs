@@ -31,6 +31,9 @@ pub enum Coverage {
     Msaa,
     /// `VK_EXT_conservative_rasterization`, overestimating.
     Hardware,
+    /// Conservative without the extension: the geometry shader grows the triangle by half a
+    /// pixel diagonal and the fragment shader clips it to its bounding box (raster.geom).
+    Conservative,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -74,7 +77,7 @@ impl VoxelizeMethod {
                 match coverage {
                     Coverage::Msaa => f.push(Feature::NoAttachmentMsaa4),
                     Coverage::Hardware => f.push(Feature::ConservativeRasterization),
-                    Coverage::None => {}
+                    Coverage::None | Coverage::Conservative => {}
                 }
                 f
             }
@@ -89,6 +92,7 @@ impl VoxelizeMethod {
                 Coverage::None => "raster-none".into(),
                 Coverage::Msaa => "raster-msaa".into(),
                 Coverage::Hardware => "raster-hw".into(),
+                Coverage::Conservative => "raster-conservative".into(),
             },
         }
     }

@@ -1,7 +1,8 @@
 //! Rasterized voxelizer (Freed 2018 §4.1.1): the geometry shader projects each triangle along
 //! its dominant axis onto an attachment-less N×N framebuffer; coverage is made conservative by
-//! 4× MSAA (the thesis' method), by hardware conservative rasterization where offered, or not
-//! at all; the fragment shader writes voxels with atomic averaging.
+//! 4× MSAA (the thesis' method), by hardware conservative rasterization where offered, by
+//! growing the triangle in the geometry shader (conservative without the extension), or not at
+//! all; the fragment shader writes the voxels the triangle really touches, with atomic averaging.
 
 use std::sync::Arc;
 
@@ -39,8 +40,14 @@ impl RasterVoxelizer {
                 format!("{size} pixels exceed the device's framebuffer limit {max}"),
             ));
         }
-        let params =
-            params_for(&volume.grid, flag(depth_span, config::VOXEL_FLAG_DEPTH_SPAN), viewport_scale, 1.0, 1.0);
+        let conservative = coverage == Coverage::Conservative;
+        if conservative && !depth_span {
+            // The grown triangle's extra fragments are only dropped by the exact voxel test.
+            return Err(crate::Error::param("no-depth-span", "conservative coverage needs the exact depth span"));
+        }
+        let flags =
+            flag(depth_span, config::VOXEL_FLAG_DEPTH_SPAN) | flag(conservative, config::VOXEL_FLAG_CONSERVATIVE);
+        let params = params_for(&volume.grid, flags, viewport_scale, 1.0, 1.0);
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
         let mut desc = GraphicsDesc::new(
             "raster voxelizer",

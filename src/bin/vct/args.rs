@@ -148,7 +148,7 @@ pub struct SceneArgs {
     /// Light bounces, 1..=8: each beyond the first adds a voxel-space gather (overrides gi.bounces).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub bounces: Option<u32>,
-    /// Diffuse cone set: thesis5|thesis5-cells|crassin6|fib16|fib32 (overrides gi.cones).
+    /// Diffuse cone set: thesis5|thesis5-cells|crassin6|fib8|fib16|fib32 (overrides gi.cones).
     #[arg(long)]
     pub cones: Option<vct::scene::file::ConeSet>,
 }
@@ -262,6 +262,7 @@ pub enum CoverageArg {
     Msaa,
     None,
     Hw,
+    Conservative,
 }
 
 /// How to voxelize (shared by every command that voxelizes).
@@ -270,7 +271,8 @@ pub struct MethodArgs {
     /// Voxelization method.
     #[arg(long, value_enum, default_value = "tess")]
     pub voxelizer: VoxelizerArg,
-    /// Rasterized path: conservative coverage by 4x MSAA, none, or hardware (VK_EXT_conservative_rasterization).
+    /// Rasterized path: coverage by 4x MSAA, none (pixel centres), conservative (the triangle
+    /// grown by half a pixel in the geometry shader), or hardware (VK_EXT_conservative_rasterization).
     #[arg(long, value_enum, default_value = "msaa")]
     pub coverage: CoverageArg,
     /// Voxel grid resolution N (N³ voxels, 16..512); default: the scene's.
@@ -312,6 +314,7 @@ impl MethodArgs {
                     CoverageArg::Msaa => Coverage::Msaa,
                     CoverageArg::None => Coverage::None,
                     CoverageArg::Hw => Coverage::Hardware,
+                    CoverageArg::Conservative => Coverage::Conservative,
                 },
                 viewport_scale: self.viewport_scale,
                 depth_span: !self.no_depth_span,

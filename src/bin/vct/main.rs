@@ -306,6 +306,18 @@ fn bench(args: BenchArgs) -> Result<()> {
         std::fs::write(&json, serde_json::to_string_pretty(&regimes)?)
             .with_context(|| format!("writing {}", json.display()))?;
         println!("wrote {}", json.display());
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        let methods = vct::bench::methods(&ctx);
+        let res = if args.quick { 64 } else { 128 };
+        let hostile = vct::bench::hostile::run(&ctx, &methods, res, &|m| bar.set_message(m.to_string()))
+            .context("voxelizing the hostile-geometry set")?;
+        bar.finish_and_clear();
+        println!("Hostile geometry (assets/hostile/), {res}³:\n{}", vct::bench::hostile::table(&hostile));
+        let json = out.join("hostile.json");
+        std::fs::write(&json, serde_json::to_string_pretty(&hostile)?)
+            .with_context(|| format!("writing {}", json.display()))?;
+        println!("wrote {}", json.display());
         return check_validation(&ctx);
     }
     let opts = vct::bench::BenchOptions {
