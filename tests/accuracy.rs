@@ -272,9 +272,10 @@ fn sunlit_closed_room() -> Scene {
     scene
 }
 
-fn inside_light(facing: bool) -> f32 {
+fn inside_light(facing: bool, self_clamp: bool) -> f32 {
     let mut scene = sunlit_closed_room();
     scene.settings.gi.facing = facing;
+    scene.settings.gi.self_clamp = self_clamp;
     lum(mean(&render(&scene, View::Full, 64).linear()))
 }
 
@@ -282,9 +283,19 @@ fn inside_light(facing: bool) -> f32 {
 /// edge-on; the radiance moment hides light that leaves its surface away from the cone.
 #[test]
 fn sunlight_on_a_closed_rooms_roof_stays_outside() {
-    let (on, off) = (inside_light(true), inside_light(false));
+    let (on, off) = (inside_light(true, true), inside_light(false, true));
     println!("mean radiance inside a closed sunlit room (truth 0): facing on {on:.5}, off {off:.5}");
     assert!(on < 0.3 * off, "hiding light that faces away should cut the leak: {on} vs {off}");
+}
+
+/// Cause: a cone leaving a wall samples coarse texels that reach back through the wall to its
+/// lit outside; the self clamp keeps each sample's level within the cone's distance from the
+/// surface (measured 0.024 with it, 0.059 without).
+#[test]
+fn the_self_clamp_keeps_a_walls_outside_out_of_its_gather() {
+    let (on, off) = (inside_light(true, true), inside_light(true, false));
+    println!("mean radiance inside a closed sunlit room (truth 0): self clamp on {on:.5}, off {off:.5}");
+    assert!(on < 0.6 * off, "the self clamp should cut the leak: {on} vs {off}");
 }
 
 /// A floor under a large emissive ceiling close above: the floor's gather is about the
@@ -316,12 +327,13 @@ fn floor_under_emissive_ceiling(self_clamp: bool) -> f32 {
     lum(mean(&f)) / (0.5 * square_emitter_factor(3.0, 1.0) / std::f32::consts::PI)
 }
 
-/// Cause: a cone's first coarse samples reach back into the receiving surface's own voxels
-/// (opaque, and dark from behind), which darkened every gather.
+/// A surface's gather of a large emitter close above agrees with the view factor, with the
+/// self clamp (measured 1.08) and without (1.02): the clamp's coarser first samples do not
+/// cost this case its accuracy.
 #[test]
-fn a_surface_does_not_darken_its_own_gather() {
+fn a_floor_under_an_emissive_ceiling_gathers_its_view_factor() {
     let (on, off) = (floor_under_emissive_ceiling(true), floor_under_emissive_ceiling(false));
     println!("floor under an emissive ceiling, gathered over the view factor: self clamp {on:.3}, off {off:.3}");
     assert!((0.9..=1.1).contains(&on), "with the clamp: {on}");
-    assert!(off < on - 0.05, "without the clamp the floor should shadow its own gather: {off} vs {on}");
+    assert!((0.9..=1.1).contains(&off), "without the clamp: {off}");
 }

@@ -9,9 +9,9 @@ use ash::vk;
 
 use super::occupancy::OccupiedVoxels;
 use super::radiance::RadianceVolume;
-use super::scene_gpu::SceneGpu;
 use crate::error::{Error, Result};
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::scene::gpu::SceneGpu;
 use crate::voxel::VoxelVolume;
 
 pub struct BouncePass {

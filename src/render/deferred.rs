@@ -8,13 +8,13 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::radiance::RadianceVolume;
-use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::shadow::ShadowPass;
 use super::Targets;
 use crate::error::Result;
 use crate::gpu::{
     self, scope, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage,
 };
+use crate::scene::gpu::{vertex_layout, SceneGpu};
 
 const ALBEDO_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 /// Normal and camera distance: 32-bit, so the rebuilt position is as exact as the forward one.

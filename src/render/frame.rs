@@ -1,34 +1,13 @@
-//! Per-frame uniforms (mirrors `FrameUniforms` in `shaders-glsl/common/frame.glsl`) and the
+//! Per-frame uniforms (`FrameUniforms`, laid out in `scene::gpu`), filled from the scene, and the
 //! camera and light matrices they carry: a perspective shadow frustum for spot lights, an
 //! orthographic one fitted to the scene bounds for directional lights (Freed 2018 §4.2).
 
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::config;
+pub use crate::scene::gpu::FrameUniforms;
 use crate::scene::{flip_y, Aabb, Camera, GiSettings, Light};
 use crate::voxel::VoxelGrid;
-
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct FrameUniforms {
-    pub view_proj: Mat4,
-    pub light_view_proj: Mat4,
-    pub light_inv_view_proj: Mat4,
-    pub inv_view_proj: Mat4,
-    pub camera_pos: Vec4,
-    pub light_pos: Vec4,
-    pub light_dir: Vec4,
-    pub light_color: Vec4,
-    pub light_cone: Vec4,
-    pub viewport: Vec4,
-    pub voxel_origin: Vec4,
-    pub voxel_grid: Vec4,
-    pub cone: Vec4,
-    pub cone_model: Vec4,
-    pub view: Vec4,
-    /// xyz: where this frame's voxel grid origin lies in the previous frame's grid (voxels).
-    pub history_shift: Vec4,
-}
 
 /// What the frame shows besides the full image (the GI debug views).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -96,7 +75,7 @@ pub struct FrameState<'a> {
     pub grid: &'a VoxelGrid,
     pub mip_levels: u32,
     pub gi: &'a GiSettings,
-    /// Cones in the surfaces' and in the voxel bounce's set (`render::cones`).
+    /// Cones in the surfaces' and in the voxel bounce's set (`scene::cones`).
     pub cone_count: u32,
     pub bounce_cone_count: u32,
     pub gi_on: bool,

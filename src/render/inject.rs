@@ -9,11 +9,11 @@ use ash::vk;
 
 use super::occupancy::OccupiedVoxels;
 use super::radiance::RadianceVolume;
-use super::scene_gpu::SceneGpu;
 use super::shadow::ShadowPass;
 use crate::config::{WORKGROUP_2D, WORKGROUP_3D};
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
+use crate::scene::gpu::SceneGpu;
 use crate::voxel::VoxelVolume;
 
 pub struct InjectPass {

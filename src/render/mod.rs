@@ -2,7 +2,6 @@
 //! [`Renderer::record`] lists the frame's passes in order, top to bottom.
 
 pub mod bounce;
-pub mod cones;
 pub mod deferred;
 pub mod filter;
 pub mod frame;
@@ -10,7 +9,6 @@ pub mod inject;
 pub mod occupancy;
 pub mod prepass;
 pub mod radiance;
-pub mod scene_gpu;
 pub mod shade;
 pub mod shadow;
 pub mod temporal;
@@ -27,18 +25,19 @@ use std::cell::Cell;
 use crate::error::Result;
 use crate::gpu::{self, Context, GpuTimer, Image, ImageDesc, Timing};
 use crate::scene::file::Filter;
+use crate::scene::gpu::FrameUniforms;
+use crate::scene::gpu::SceneGpu;
 use crate::scene::{Light, Scene};
 use crate::voxel::{VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
 use bounce::BouncePass;
 use deferred::DeferredShadePass;
 use filter::FilterPass;
+use frame::FrameState;
 pub use frame::View;
-use frame::{FrameState, FrameUniforms};
 use inject::InjectPass;
 use occupancy::OccupiedVoxels;
 use prepass::DepthPrepass;
 use radiance::RadianceVolume;
-use scene_gpu::SceneGpu;
 use shade::ShadePass;
 use shadow::ShadowPass;
 use temporal::{Source, TemporalBlend};

@@ -5,10 +5,10 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::Targets;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Attachments, Context, GraphicsDesc, Pipeline, Stage};
+use crate::scene::gpu::{vertex_layout, SceneGpu};
 
 pub struct DepthPrepass {
     ctx: Arc<Context>,

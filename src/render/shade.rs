@@ -10,13 +10,13 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::radiance::RadianceVolume;
-use super::scene_gpu::{vertex_layout, SceneGpu};
 use super::shadow::ShadowPass;
 use super::Targets;
 use crate::error::Result;
 use crate::gpu::{
     self, scope, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Pipeline, Sampler, Stage,
 };
+use crate::scene::gpu::{vertex_layout, SceneGpu};
 
 pub struct ShadePass {
     ctx: Arc<Context>,

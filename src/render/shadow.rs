@@ -6,9 +6,9 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::scene_gpu::{vertex_layout, SceneGpu};
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Attachments, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage};
+use crate::scene::gpu::{vertex_layout, SceneGpu};
 
 pub const SHADOW_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 

@@ -8,10 +8,10 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::radiance::RadianceVolume;
-use super::scene_gpu::SceneGpu;
 use crate::config::WORKGROUP_3D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Image, Pipeline, Stage};
+use crate::scene::gpu::SceneGpu;
 
 /// Which image a blend reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -7,10 +7,10 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::radiance::RadianceVolume;
-use super::scene_gpu::SceneGpu;
 use super::Targets;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::scene::gpu::SceneGpu;
 use crate::voxel::VoxelVolume;
 
 pub struct VolumeViewPass {

@@ -93,7 +93,7 @@ impl LevelRule {
     }
 }
 
-/// A named diffuse cone layout (the directions and weights are built in `render::cones`).
+/// A named diffuse cone layout (the directions and weights are built in `scene::cones`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ConeSet {

@@ -3,7 +3,9 @@
 //! physical: metres, W/sr for spot intensity, W/m² for directional irradiance; MTL `Kd` is
 //! linear albedo. The Cornell box of `assets/cornell-spot/` is embedded as the default.
 
+pub mod cones;
 pub mod file;
+pub mod gpu;
 pub mod obj;
 
 use std::path::{Path, PathBuf};

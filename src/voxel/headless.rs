@@ -6,7 +6,7 @@ use std::sync::Arc;
 use super::{occupancy_of, VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
 use crate::error::Result;
 use crate::gpu::{Context, GpuTimer};
-use crate::render::scene_gpu::SceneGpu;
+use crate::scene::gpu::SceneGpu;
 use crate::scene::Scene;
 
 pub struct VoxelRun {

@@ -19,7 +19,7 @@ pub use volume::{occupancy as occupancy_of, unpack_rgb, VoxelVolume};
 
 use crate::error::Result;
 use crate::gpu::{Binding, Buffer, Context, DescriptorSet, Feature};
-use crate::render::scene_gpu::SceneGpu;
+use crate::scene::gpu::SceneGpu;
 use crate::scene::Scene;
 
 /// How the rasterized path makes coverage conservative.

@@ -12,7 +12,7 @@ use super::{flag, params_for, voxel_set, Coverage, ParamsUbo, VoxelVolume};
 use crate::config;
 use crate::error::Result;
 use crate::gpu::{self, shaders, Attachments, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
-use crate::render::scene_gpu::{vertex_layout_untangented, SceneGpu};
+use crate::scene::gpu::{vertex_layout_untangented, SceneGpu};
 
 pub struct RasterVoxelizer {
     ctx: Arc<Context>,

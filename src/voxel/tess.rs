@@ -12,7 +12,7 @@ use super::{flag, params_for, voxel_set, ParamsUbo, VoxelVolume};
 use crate::config;
 use crate::error::Result;
 use crate::gpu::{self, shaders, Attachments, Context, DescriptorSet, GraphicsDesc, Pipeline, Stage};
-use crate::render::scene_gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
+use crate::scene::gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
 use crate::scene::Scene;
 
 pub struct TessVoxelizer {
@@ -37,8 +37,9 @@ impl TessVoxelizer {
         min_level: bool,
     ) -> Result<Self> {
         let max_level = ctx.info.limits.max_tessellation_generation_level as f32;
+        let balance: f32 = std::env::var("VCT_TESS_BALANCE").ok().and_then(|v| v.parse().ok()).unwrap_or(max_level);
         let (mesh, split) = if subdivide {
-            let (m, split) = subdivide_for_tessellation(&scene.mesh, &volume.grid, level_scale, max_level);
+            let (m, split) = subdivide_for_tessellation(&scene.mesh, &volume.grid, level_scale, max_level.min(balance));
             (MeshBuffers::new(ctx, "tess voxelizer mesh", &m)?, split)
         } else {
             (MeshBuffers::new(ctx, "tess voxelizer mesh", &scene.mesh)?, 0)

@@ -98,6 +98,10 @@ pub struct BenchArgs {
     /// With --accuracy: light bounces of the renderer (overrides the scenes' gi.bounces).
     #[arg(long, requires = "accuracy", value_parser = clap::value_parser!(u32).range(1..=8))]
     pub bounces: Option<u32>,
+    /// Only the scenes given, without the embedded Cornell box (and, with --accuracy, its
+    /// directional variant).
+    #[arg(long, requires = "scenes")]
+    pub given_only: bool,
     /// With --accuracy: bounces of the path-traced reference (default: the renderer's).
     #[arg(long, requires = "accuracy", value_parser = clap::value_parser!(u32).range(0..=64))]
     pub ref_bounces: Option<u32>,

@@ -264,8 +264,11 @@ fn bench(args: BenchArgs) -> Result<()> {
         }
         return Ok(());
     }
-    let mut scenes = vec![("cornell".to_string(), Scene::embedded_default()?)];
-    if args.accuracy {
+    let mut scenes = Vec::new();
+    if !args.given_only {
+        scenes.push(("cornell".to_string(), Scene::embedded_default()?));
+    }
+    if args.accuracy && !args.given_only {
         let directional = Path::new(vct::scene::EMBEDDED_DIR).join("scene-directional.toml");
         scenes.push(("cornell-directional".to_string(), load_scene(Some(&directional))?));
     }

@@ -1,13 +1,14 @@
 //! The scene on the GPU: vertex and index buffers, the material buffer, textures (with mip
-//! chains), the diffuse cone set, and descriptor set 0 that every scene-drawing pass binds (see
-//! `common/frame.glsl`).
+//! chains), the diffuse cone set, the frame uniform buffer, and descriptor set 0 that every
+//! scene-drawing pass and both voxelizers bind (see `common/frame.glsl`). Below the voxelizers
+//! and the render passes: it imports neither.
 
 use std::sync::Arc;
 
 use ash::vk;
+use glam::{Mat4, Vec4};
 use gpu_allocator::MemoryLocation;
 
-use super::frame::FrameUniforms;
 use crate::config;
 use crate::error::Result;
 use crate::gpu::{commands, Binding, Buffer, Context, DescriptorSet, Image, ImageDesc, Sampler, VertexLayout};
@@ -21,6 +22,29 @@ pub struct MaterialGpu {
     pub emissive: [f32; 4],
     pub specular: [f32; 4],
     pub tex: [u32; 4],
+}
+
+/// Mirrors `FrameUniforms` in `common/frame.glsl` (filled by `render::frame`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniforms {
+    pub view_proj: Mat4,
+    pub light_view_proj: Mat4,
+    pub light_inv_view_proj: Mat4,
+    pub inv_view_proj: Mat4,
+    pub camera_pos: Vec4,
+    pub light_pos: Vec4,
+    pub light_dir: Vec4,
+    pub light_color: Vec4,
+    pub light_cone: Vec4,
+    pub viewport: Vec4,
+    pub voxel_origin: Vec4,
+    pub voxel_grid: Vec4,
+    pub cone: Vec4,
+    pub cone_model: Vec4,
+    pub view: Vec4,
+    /// xyz: where this frame's voxel grid origin lies in the previous frame's grid (voxels).
+    pub history_shift: Vec4,
 }
 
 pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [
