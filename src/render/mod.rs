@@ -151,7 +151,8 @@ pub struct RenderOptions {
 impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
-            method: VoxelizeMethod::tess(),
+            // Exact and the fastest (docs/benchmarks.md, "Hostile geometry").
+            method: VoxelizeMethod::raster(crate::voxel::Coverage::Conservative),
             resolution: None,
             view: View::Full,
             gi: true,

@@ -247,7 +247,7 @@ impl App {
             }
             KeyCode::KeyV => {
                 options.method = match options.method {
-                    VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Msaa),
+                    VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Conservative),
                     VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
                 };
                 println!("voxelizer: {}", options.method.label());
@@ -304,7 +304,7 @@ impl App {
         if frame > 0 && frame.is_multiple_of(60) {
             let mut o = r.renderer.options;
             o.method = match o.method {
-                VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Msaa),
+                VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Conservative),
                 VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
             };
             Self::rebuild(r, o)?;

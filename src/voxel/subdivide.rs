@@ -1,6 +1,6 @@
 //! Splits, when the scene loads, exactly those triangles whose tessellation levels would pass
-//! the device's `maxTessellationGenerationLevel` (Freed 2018 §4.1.2 names the problem: such
-//! triangles leave holes). Longest-edge bisection until every level fits. The level formulas
+//! a bound: the device's `maxTessellationGenerationLevel` (Freed 2018 §4.1.2 names the problem:
+//! such triangles leave holes), or the lower patch-balance bound of `tess.rs`. Longest-edge bisection until every level fits. The level formulas
 //! are those of `shaders-glsl/voxelize/tess.tesc`.
 
 use glam::{Vec2, Vec3, Vec4};

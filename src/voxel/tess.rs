@@ -1,7 +1,8 @@
 //! Tessellation voxelizer (Freed 2018 §4.1.2): 3-control-point patches; the control shader
 //! sets levels from edge lengths and the largest altitude against the voxel size, the
 //! evaluation shader (point mode) writes one voxel per generated vertex. Triangles whose
-//! levels would pass the device limit are subdivided when the scene loads.
+//! levels would pass the device limit, or the patch-balance bound below it, are subdivided when
+//! the scene loads.
 
 use std::sync::Arc;
 
@@ -15,6 +16,13 @@ use crate::gpu::{self, shaders, Attachments, Context, DescriptorSet, GraphicsDes
 use crate::scene::gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
 use crate::scene::Scene;
 
+/// Triangles are split at load until no tessellation level passes this bound, so that no patch
+/// is huge: a per-patch CPU tessellator (lavapipe) runs patches in parallel, and a few huge ones
+/// serialize. Measured on the Cornell box (docs/benchmarks.md, "Hostile geometry"): at 128³ the
+/// device limit (64) gives 2187 ms, 16 gives 872, 8 gives 625, 4 gives 798 (too many patches),
+/// with recall unchanged (0.994).
+pub const PATCH_LEVEL_BOUND: f32 = 8.0;
+
 pub struct TessVoxelizer {
     ctx: Arc<Context>,
     pipeline: Pipeline,
@@ -24,6 +32,7 @@ pub struct TessVoxelizer {
     mesh: MeshBuffers,
     split: usize,
     subdivide: bool,
+    max_level: f32,
 }
 
 impl TessVoxelizer {
@@ -37,9 +46,9 @@ impl TessVoxelizer {
         min_level: bool,
     ) -> Result<Self> {
         let max_level = ctx.info.limits.max_tessellation_generation_level as f32;
-        let balance: f32 = std::env::var("VCT_TESS_BALANCE").ok().and_then(|v| v.parse().ok()).unwrap_or(max_level);
         let (mesh, split) = if subdivide {
-            let (m, split) = subdivide_for_tessellation(&scene.mesh, &volume.grid, level_scale, max_level.min(balance));
+            let bound = max_level.min(PATCH_LEVEL_BOUND);
+            let (m, split) = subdivide_for_tessellation(&scene.mesh, &volume.grid, level_scale, bound);
             (MeshBuffers::new(ctx, "tess voxelizer mesh", &m)?, split)
         } else {
             (MeshBuffers::new(ctx, "tess voxelizer mesh", &scene.mesh)?, 0)
@@ -62,7 +71,7 @@ impl TessVoxelizer {
         desc.patch_control_points = 3;
         desc.rasterizer_discard = true;
         let pipeline = Pipeline::graphics(ctx, &desc)?;
-        Ok(TessVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, mesh, split, subdivide })
+        Ok(TessVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, mesh, split, subdivide, max_level })
     }
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu) {
@@ -76,7 +85,10 @@ impl TessVoxelizer {
 
     pub fn notes(&self) -> Vec<String> {
         if self.subdivide {
-            vec![format!("tessellation: subdivided {} triangle(s) whose levels passed the device limit", self.split)]
+            vec![format!(
+                "tessellation: split {} triangle(s) whose levels passed {PATCH_LEVEL_BOUND} (patch balance; device limit {})",
+                self.split, self.max_level
+            )]
         } else {
             vec!["tessellation: subdivision off; triangles past the level limit leave holes".into()]
         }

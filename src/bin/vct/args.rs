@@ -272,12 +272,13 @@ pub enum CoverageArg {
 /// How to voxelize (shared by every command that voxelizes).
 #[derive(Args)]
 pub struct MethodArgs {
-    /// Voxelization method.
-    #[arg(long, value_enum, default_value = "tess")]
+    /// Voxelization method (default: rasterized with conservative coverage, exact and the
+    /// fastest; docs/benchmarks.md).
+    #[arg(long, value_enum, default_value = "raster")]
     pub voxelizer: VoxelizerArg,
     /// Rasterized path: coverage by 4x MSAA, none (pixel centres), conservative (the triangle
     /// grown by half a pixel in the geometry shader), or hardware (VK_EXT_conservative_rasterization).
-    #[arg(long, value_enum, default_value = "msaa")]
+    #[arg(long, value_enum, default_value = "conservative")]
     pub coverage: CoverageArg,
     /// Voxel grid resolution N (N³ voxels, 16..512); default: the scene's.
     #[arg(long)]
