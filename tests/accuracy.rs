@@ -128,14 +128,7 @@ fn square_emitter_factor(a: f32, h: f32) -> f32 {
 /// A white floor and, above it, a coloured emissive square of half side `half` at height 1: no
 /// light source but the square.
 fn emitter_over_floor(le: Vec3, half: f32) -> Scene {
-    let quad = |y: f32, s: f32, up: bool| {
-        let q = [Vec3::new(-s, y, -s), Vec3::new(s, y, -s), Vec3::new(s, y, s), Vec3::new(-s, y, s)];
-        if up {
-            [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
-        } else {
-            [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
-        }
-    };
+    let quad = common::horizontal_square;
     let mut tris: Vec<([Vec3; 3], usize)> = quad(0.0, 3.0, true).into_iter().map(|t| (t, 0)).collect();
     tris.extend(quad(1.0, half, false).into_iter().map(|t| (t, 1)));
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(0.8), Vec3::ZERO]);
@@ -195,20 +188,7 @@ fn the_path_tracer_gets_an_emitters_light_by_next_event_estimation() {
 /// A closed box, every face emitting 1 with albedo 0.5, seen from inside: every cone sees
 /// radiance 1 wherever it ends, so the indirect light is 0.5 everywhere.
 fn furnace() -> Scene {
-    let c = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
-    let v = [
-        c(-1., -1., -1.),
-        c(1., -1., -1.),
-        c(1., 1., -1.),
-        c(-1., 1., -1.),
-        c(-1., -1., 1.),
-        c(1., -1., 1.),
-        c(1., 1., 1.),
-        c(-1., 1., 1.),
-    ];
-    let faces = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [3, 2, 6, 7], [0, 3, 7, 4], [1, 5, 6, 2]];
-    let tris: Vec<_> =
-        faces.iter().flat_map(|f| [([v[f[0]], v[f[1]], v[f[2]]], 0), ([v[f[0]], v[f[2]], v[f[3]]], 0)]).collect();
+    let tris = common::box_triangles(Vec3::splat(-1.0), Vec3::splat(1.0));
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(0.5)]);
     scene.materials[0].emissive = Vec3::ONE;
     scene.lights.clear();
@@ -242,20 +222,7 @@ fn a_closed_emissive_box_gathers_exactly_its_radiance() {
 
 /// A closed room lit only from outside by the sun on its roof: inside, the truth is black.
 fn sunlit_closed_room() -> Scene {
-    let c = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
-    let v = [
-        c(-2., 0., -2.),
-        c(2., 0., -2.),
-        c(2., 2., -2.),
-        c(-2., 2., -2.),
-        c(-2., 0., 2.),
-        c(2., 0., 2.),
-        c(2., 2., 2.),
-        c(-2., 2., 2.),
-    ];
-    let faces = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [3, 2, 6, 7], [0, 3, 7, 4], [1, 5, 6, 2]];
-    let tris: Vec<_> =
-        faces.iter().flat_map(|f| [([v[f[0]], v[f[1]], v[f[2]]], 0), ([v[f[0]], v[f[2]], v[f[3]]], 0)]).collect();
+    let tris = common::box_triangles(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 2.0, 2.0));
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(0.8)]);
     scene.lights = vec![vct::scene::Light::Directional {
         direction: Vec3::new(0.3, -1.0, 0.2).normalize(),
@@ -301,14 +268,7 @@ fn the_self_clamp_keeps_a_walls_outside_out_of_its_gather() {
 /// A floor under a large emissive ceiling close above: the floor's gather is about the
 /// ceiling's radiance times the view factor.
 fn floor_under_emissive_ceiling(self_clamp: bool) -> f32 {
-    let quad = |y: f32, s: f32, up: bool| {
-        let q = [Vec3::new(-s, y, -s), Vec3::new(s, y, -s), Vec3::new(s, y, s), Vec3::new(-s, y, s)];
-        if up {
-            [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
-        } else {
-            [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
-        }
-    };
+    let quad = common::horizontal_square;
     let mut tris: Vec<([Vec3; 3], usize)> = quad(0.0, 3.0, true).into_iter().map(|t| (t, 0)).collect();
     tris.extend(quad(1.0, 3.0, false).into_iter().map(|t| (t, 1)));
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(0.5), Vec3::ZERO]);

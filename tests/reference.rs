@@ -2,6 +2,8 @@
 //! analytic cases — a lit plane, the white furnace, the spot-lit Cornell floor — and `vct
 //! compare` of an image with itself gives FLIP 0.
 
+mod common;
+
 use glam::Vec3;
 use vct::reference::pathtrace::{PathTracer, RefOptions};
 use vct::scene::{Camera, Light, Scene};
@@ -50,20 +52,7 @@ fn lit_plane_has_the_analytic_radiance() {
 
 /// A closed box, every face white (albedo `rho`) and emitting `le`, seen from inside.
 fn furnace(rho: f32) -> Scene {
-    let c = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
-    let v = [
-        c(-1., -1., -1.),
-        c(1., -1., -1.),
-        c(1., 1., -1.),
-        c(-1., 1., -1.),
-        c(-1., -1., 1.),
-        c(1., -1., 1.),
-        c(1., 1., 1.),
-        c(-1., 1., 1.),
-    ];
-    let faces = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [3, 2, 6, 7], [0, 3, 7, 4], [1, 5, 6, 2]];
-    let tris: Vec<_> =
-        faces.iter().flat_map(|f| [([v[f[0]], v[f[1]], v[f[2]]], 0), ([v[f[0]], v[f[2]], v[f[3]]], 0)]).collect();
+    let tris = common::box_triangles(Vec3::splat(-1.0), Vec3::splat(1.0));
     let mut scene = Scene::from_triangles(&tris, &[Vec3::splat(rho)]);
     scene.materials[0].emissive = Vec3::ONE;
     scene.lights.clear();

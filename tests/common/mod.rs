@@ -1,5 +1,5 @@
 //! Shared test helpers: a validated Vulkan context, a CPU ray caster over a scene's triangles
-//! (brute force, independent of the GPU code) and pixel accessors.
+//! (brute force, independent of the GPU code), pixel accessors, and small test geometry.
 #![allow(dead_code)]
 
 use std::sync::Arc;
@@ -77,4 +77,33 @@ pub fn pixel_of(scene: &Scene, p: Vec3) -> (u32, u32) {
     let x = ((sx + 1.0) * 0.5 * c.width as f32 - 0.5).round();
     let y = ((1.0 - sy) * 0.5 * c.height as f32 - 0.5).round();
     (x as u32, y as u32)
+}
+
+/// The twelve triangles (material 0) of the box from `min` to `max`, each face wound the same
+/// way round.
+pub fn box_triangles(min: Vec3, max: Vec3) -> Vec<([Vec3; 3], usize)> {
+    let (a, b) = (min, max);
+    let v = [
+        Vec3::new(a.x, a.y, a.z),
+        Vec3::new(b.x, a.y, a.z),
+        Vec3::new(b.x, b.y, a.z),
+        Vec3::new(a.x, b.y, a.z),
+        Vec3::new(a.x, a.y, b.z),
+        Vec3::new(b.x, a.y, b.z),
+        Vec3::new(b.x, b.y, b.z),
+        Vec3::new(a.x, b.y, b.z),
+    ];
+    let faces = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [3, 2, 6, 7], [0, 3, 7, 4], [1, 5, 6, 2]];
+    faces.iter().flat_map(|f| [([v[f[0]], v[f[1]], v[f[2]]], 0), ([v[f[0]], v[f[2]], v[f[3]]], 0)]).collect()
+}
+
+/// A horizontal square of half side `half` at height `y`, its normal up or down.
+pub fn horizontal_square(y: f32, half: f32, up: bool) -> [[Vec3; 3]; 2] {
+    let s = half;
+    let q = [Vec3::new(-s, y, -s), Vec3::new(s, y, -s), Vec3::new(s, y, s), Vec3::new(-s, y, s)];
+    if up {
+        [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
+    } else {
+        [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+    }
 }
