@@ -38,3 +38,22 @@ fn conservative_coverage_needs_the_exact_depth_span() {
     let err = vct::voxel::headless::voxelize(&ctx, &scene, m, 32, 1).err().expect("accepted without the depth span");
     assert!(err.to_string().contains("no-depth-span"), "{err}");
 }
+
+#[test]
+fn tessellation_with_the_neighbour_fill_is_exact_on_hostile_meshes_and_without_it_is_not() {
+    let no_fill = VoxelizeMethod::Tess { neighbours: false, level_scale: 3.0, subdivide: true, min_level: true };
+    let rows = rows(&[VoxelizeMethod::tess(), no_fill]);
+    for mesh in hostile::MESHES {
+        let r: Vec<&HostileRow> = rows.iter().filter(|r| r.mesh == mesh).collect();
+        let (fill, sampled) = (r[0], r[1]);
+        assert!(fill.recall >= 0.99 && fill.precision >= 0.999, "{mesh}: tessellation with the fill {fill:?}");
+        if mesh != "fans" {
+            assert!(
+                sampled.recall < fill.recall - 0.01,
+                "{mesh}: sampling alone {} vs {}",
+                sampled.recall,
+                fill.recall
+            );
+        }
+    }
+}

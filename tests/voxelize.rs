@@ -117,7 +117,7 @@ fn large_triangle_needs_subdivision_beyond_the_tessellation_limit() {
     let big = [[v(3.5, 3.5, 61.5), v(124.5, 3.5, 61.5), v(3.5, 124.5, 61.5)]];
     let (with, _) = run_triangles(&big, tess(), 128);
     let VoxelizeMethod::Tess { level_scale, .. } = tess() else { unreachable!() };
-    let holes = VoxelizeMethod::Tess { level_scale, subdivide: false, min_level: true };
+    let holes = VoxelizeMethod::Tess { level_scale, subdivide: false, min_level: true, neighbours: false };
     let (without, _) = run_triangles(&big, holes, 128);
     println!("subdivided: {with:?}\nnot subdivided: {without:?}");
     assert!(with.recall >= 0.999, "recall with subdivision {}", with.recall);
@@ -128,7 +128,11 @@ fn large_triangle_needs_subdivision_beyond_the_tessellation_limit() {
 fn tiny_triangle_is_lost_without_the_minimum_level() {
     let tiny = [[v(10.2, 11.3, 12.4), v(10.5, 11.35, 12.45), v(10.3, 11.7, 12.6)]];
     let VoxelizeMethod::Tess { level_scale, .. } = tess() else { unreachable!() };
-    let (a, run) = run_triangles(&tiny, VoxelizeMethod::Tess { level_scale, subdivide: true, min_level: false }, 32);
+    let (a, run) = run_triangles(
+        &tiny,
+        VoxelizeMethod::Tess { level_scale, subdivide: true, min_level: false, neighbours: false },
+        32,
+    );
     assert_eq!(run.occupied().iter().filter(|&&o| o).count(), 0, "levels < 1 should drop the patch");
     assert_eq!(a.recall, 0.0);
 }
@@ -157,8 +161,20 @@ fn shared_voxel_averages_red_and_green() {
     let ctx = common::context();
     let t = [v(4.5, 4.5, 10.5), v(20.5, 5.5, 10.5), v(6.5, 22.5, 10.5)];
     let scene = Scene::from_triangles(&[(t, 0), (t, 1)], &[Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]);
-    for method in [tess(), msaa()] {
+    // The neighbour fill writes only empty voxels, so a voxel no sample of either triangle
+    // falls in keeps the first triangle's colour; sampled voxels average. Without the fill
+    // every written voxel is sampled.
+    let no_fill = VoxelizeMethod::Tess { neighbours: false, level_scale: 3.0, subdivide: true, min_level: true };
+    for method in [tess(), no_fill, msaa()] {
         let run = voxelize_in(&ctx, &scene, method, unit_grid(32), 1).unwrap();
+        let written: Vec<[f32; 3]> = run.albedo.iter().filter(|&&p| p >> 24 > 0).map(|&p| unpack_rgb(p)).collect();
+        let mixed = written.iter().filter(|c| (0.25..=0.75).contains(&c[0]) && (0.25..=0.75).contains(&c[1])).count();
+        let share = mixed as f64 / written.len() as f64;
+        println!("{}: {} voxels written, {:.3} of them mixed", method.label(), written.len(), share);
+        if method == tess() {
+            assert!(share > 0.5, "tess with the fill: only {share} of the voxels average both colours");
+            continue;
+        }
         let centre = run.albedo[run.grid.index(10, 10, 10)];
         let [r, g, b] = unpack_rgb(centre);
         assert!(centre >> 24 > 0, "{}: voxel not written", method.label());

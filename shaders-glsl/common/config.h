@@ -42,6 +42,9 @@
 // geometry shader moves each edge out by half a pixel diagonal, the fragment shader discards
 // pixels outside the triangle's bounding box (and tests every voxel exactly).
 #define VOXEL_FLAG_CONSERVATIVE 4
+// Tessellation path: each evaluation point also tests the 26 voxels around its own against
+// the triangle (exact triangle/box test) and fills those the triangle meets that nobody wrote.
+#define VOXEL_FLAG_NEIGHBOURS 8
 
 // Global illumination (Freed 2018 §4.3-4.5).
 // Diffuse cones: the largest cone set (render::cones), each cone a direction in the surface's

@@ -1,10 +1,15 @@
 #version 460
 // Tessellation voxelizer, evaluation stage (Freed 2018 §4.1.2): point mode, equal spacing;
 // every generated vertex writes the voxel it falls in, with barycentric-interpolated albedo
-// (material colour times texture) and normal.
+// (material colour times texture) and normal. With VOXEL_FLAG_NEIGHBOURS it also tests the 26
+// voxels around that one against the triangle (exact triangle/box test) and fills those the
+// triangle meets that are still empty: a lattice with at most one voxel between samples then
+// reaches every voxel the triangle touches, even those a thin or small triangle only grazes,
+// and the fill never competes with the averaging of voxels already written.
 #include "frame.glsl"
 #include "material_textures.glsl"
 #include "voxel.glsl"
+#include "tribox.glsl"
 
 layout(triangles, equal_spacing, point_mode) in;
 
@@ -21,6 +26,20 @@ void main() {
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= textureLod(albedo_texture, uv, 0.0).rgb;
     if (dot(normal, normal) < 1e-12) normal = vec3(0.0, 1.0, 0.0);
-    write_voxel(ivec3(floor(to_voxel_space(world))), albedo, normal, m.emissive.rgb);
+    ivec3 own = ivec3(floor(to_voxel_space(world)));
+    write_voxel(own, albedo, normal, m.emissive.rgb);
+    if ((voxel.grid.y & VOXEL_FLAG_NEIGHBOURS) != 0u) {
+        vec3 p0 = to_voxel_space(in_world[0]), p1 = to_voxel_space(in_world[1]), p2 = to_voxel_space(in_world[2]);
+        int n = int(voxel.grid.x);
+        for (int i = 0; i < 27; i++) {
+            ivec3 c = own + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;
+            if (i == 13 || any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(n)))) continue;
+            vec3 centre = vec3(c) + 0.5;
+            if (imageLoad(voxel_albedo, c).r == 0u &&
+                triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, vec3(0.5))) {
+                write_voxel(c, albedo, normal, m.emissive.rgb);
+            }
+        }
+    }
     gl_Position = vec4(world, 1.0);
 }

@@ -24,7 +24,7 @@ use crate::render::{Follow, RenderOptions, Renderer, View};
 use crate::scene::file::{Filter, GiFile};
 use crate::scene::{Camera, Light, Scene};
 use crate::voxel::headless::voxelize_in;
-use crate::voxel::{Coverage, VoxelGrid, VoxelizeMethod, DEFAULT_LEVEL_SCALE};
+use crate::voxel::{Coverage, VoxelGrid, VoxelizeMethod, DEFAULT_LEVEL_SCALE, DEFAULT_NEIGHBOURS};
 
 /// One curve: a label and its (x, y) points.
 #[derive(Clone, Debug, Serialize)]
@@ -62,7 +62,12 @@ fn unit_grid(n: u32) -> VoxelGrid {
 }
 
 fn tess(subdivide: bool) -> VoxelizeMethod {
-    VoxelizeMethod::Tess { level_scale: DEFAULT_LEVEL_SCALE, subdivide, min_level: true }
+    VoxelizeMethod::Tess {
+        level_scale: DEFAULT_LEVEL_SCALE,
+        subdivide,
+        min_level: true,
+        neighbours: DEFAULT_NEIGHBOURS,
+    }
 }
 
 /// Regime 1: a right triangle with legs of `size` voxels in a 128³ grid.

@@ -45,6 +45,9 @@ pub enum VoxelizeMethod {
         subdivide: bool,
         /// Keep levels >= 1 so triangles inside one voxel still write it.
         min_level: bool,
+        /// Each evaluation point also fills the empty voxels around its own that the
+        /// triangle meets (exact on thin and small triangles).
+        neighbours: bool,
     },
     Raster {
         coverage: Coverage,
@@ -56,13 +59,25 @@ pub enum VoxelizeMethod {
     },
 }
 
-/// Default tessellation level scale: see README "Accuracy" (the thesis' 1.0 misses voxels
-/// along diagonals: recall 0.946 on the Cornell box at 128³; 2.0 gives 0.989, 3.0 gives 0.994).
-pub const DEFAULT_LEVEL_SCALE: f32 = 3.0;
+/// Default tessellation level scale: the thesis' levels. Alone they miss voxels along
+/// diagonals (recall 0.947 on the Cornell box at 128³; scale 3 gave 0.994 at 2.6× the time);
+/// with the neighbour fill below, every voxel a triangle touches lies next to a sample, and
+/// scale 1 is exact (docs/benchmarks.md, "Hostile geometry").
+pub const DEFAULT_LEVEL_SCALE: f32 = 1.0;
+
+/// The tessellation path fills the empty voxels around each evaluation point that its
+/// triangle meets: recall 1.000 on the Cornell box and the hostile set, where sampling alone
+/// keeps 0.74–0.95.
+pub const DEFAULT_NEIGHBOURS: bool = true;
 
 impl VoxelizeMethod {
     pub fn tess() -> Self {
-        VoxelizeMethod::Tess { level_scale: DEFAULT_LEVEL_SCALE, subdivide: true, min_level: true }
+        VoxelizeMethod::Tess {
+            level_scale: DEFAULT_LEVEL_SCALE,
+            subdivide: true,
+            min_level: true,
+            neighbours: DEFAULT_NEIGHBOURS,
+        }
     }
     pub fn raster(coverage: Coverage) -> Self {
         VoxelizeMethod::Raster { coverage, viewport_scale: 1.0, depth_span: true }
@@ -185,15 +200,9 @@ impl Voxelizer {
             },
         )?;
         Ok(match method {
-            VoxelizeMethod::Tess { level_scale, subdivide, min_level } => Voxelizer::Tess(tess::TessVoxelizer::new(
-                ctx,
-                scene,
-                scene_gpu,
-                volume,
-                level_scale,
-                subdivide,
-                min_level,
-            )?),
+            VoxelizeMethod::Tess { level_scale, subdivide, min_level, neighbours } => Voxelizer::Tess(
+                tess::TessVoxelizer::new(ctx, scene, scene_gpu, volume, level_scale, subdivide, min_level, neighbours)?,
+            ),
             VoxelizeMethod::Raster { coverage, viewport_scale, depth_span } => Voxelizer::Raster(
                 raster::RasterVoxelizer::new(ctx, scene_gpu, volume, coverage, viewport_scale, depth_span)?,
             ),

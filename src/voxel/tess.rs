@@ -36,6 +36,8 @@ pub struct TessVoxelizer {
 }
 
 impl TessVoxelizer {
+    /// The method's four switches come as `VoxelizeMethod::Tess` holds them.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         ctx: &Arc<Context>,
         scene: &Scene,
@@ -44,6 +46,7 @@ impl TessVoxelizer {
         level_scale: f32,
         subdivide: bool,
         min_level: bool,
+        neighbours: bool,
     ) -> Result<Self> {
         let max_level = ctx.info.limits.max_tessellation_generation_level as f32;
         let (mesh, split) = if subdivide {
@@ -53,8 +56,8 @@ impl TessVoxelizer {
         } else {
             (MeshBuffers::new(ctx, "tess voxelizer mesh", &scene.mesh)?, 0)
         };
-        let params =
-            params_for(&volume.grid, flag(min_level, config::VOXEL_FLAG_MIN_LEVEL), 1.0, level_scale, max_level);
+        let flags = flag(min_level, config::VOXEL_FLAG_MIN_LEVEL) | flag(neighbours, config::VOXEL_FLAG_NEIGHBOURS);
+        let params = params_for(&volume.grid, flags, 1.0, level_scale, max_level);
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
         let mut desc = GraphicsDesc::new(
             "tess voxelizer",

@@ -292,6 +292,10 @@ pub struct MethodArgs {
     /// Tessellation path: let levels below 1 drop the triangle (shows the lost small triangles).
     #[arg(long)]
     pub no_min_level: bool,
+    /// Tessellation path: each evaluation point also fills the empty voxels around its own
+    /// that the triangle meets (on|off; default: vct's).
+    #[arg(long, value_enum)]
+    pub neighbours: Option<OnOff>,
     /// Rasterized path: framebuffer resolution over voxel resolution.
     #[arg(long, default_value_t = 1.0)]
     pub viewport_scale: f32,
@@ -313,6 +317,7 @@ impl MethodArgs {
                 level_scale: self.level_scale,
                 subdivide: !self.no_subdivide,
                 min_level: !self.no_min_level,
+                neighbours: self.neighbours.map_or(vct::voxel::DEFAULT_NEIGHBOURS, |n| n == OnOff::On),
             },
             VoxelizerArg::Raster => VoxelizeMethod::Raster {
                 coverage: match self.coverage {
