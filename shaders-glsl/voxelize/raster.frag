@@ -18,6 +18,11 @@ layout(location = 3) flat in vec4 in_depth;
 layout(location = 4) flat in vec3 in_tri[3];
 layout(location = 7) flat in vec4 in_bounds;
 
+// Depth (voxels) of the triangle's plane at `p` (swizzled voxel x, y).
+float plane_depth(vec2 p) {
+    return in_tri[0].z + dot(in_depth.zw, p - in_tri[0].xy);
+}
+
 vec3 unswizzle(vec3 v, uint axis) {
     return axis == 0u ? v.zxy : (axis == 1u ? v.yzx : v);
 }
@@ -29,18 +34,17 @@ void main() {
     }
     float scale = voxel.tess.z;
     vec2 xy = floor(gl_FragCoord.xy / scale);
-    // Depth (voxels) of the triangle's plane at the fragment.
-    float z = in_tri[0].z + dot(in_depth.zw, gl_FragCoord.xy / scale - in_tri[0].xy);
     Material m = materials[push.material];
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
     if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) == 0u) {
+        float z = plane_depth(gl_FragCoord.xy / scale);
         write_voxel(ivec3(unswizzle(vec3(xy, floor(z)), in_axis)), albedo, in_normal, m.emissive.rgb);
         return;
     }
     // The plane's depth over the whole voxel column cell (dominant axis: slopes are <= 1).
     float reach = 0.5 * (abs(in_depth.z) + abs(in_depth.w));
-    float zc = z + dot(in_depth.zw, xy + 0.5 - gl_FragCoord.xy / scale);
+    float zc = plane_depth(xy + 0.5);
     int cap = 3;
     // Along the dominant axis the plane's slopes are at most 1; larger ones (or none) mean the
     // triangle is too thin for its normal to be computed: every layer of its depth range then.
