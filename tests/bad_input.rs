@@ -149,6 +149,13 @@ fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
         assert_eq!(code, 1, "--res {res}");
         assert!(err.contains("res") && err.contains(res), "--res {res}: {err}");
     }
+    // Each axis of a fitted grid is a power of two (mip levels halve it exactly).
+    let (code, err) = vct(&["voxelize", "--dims", "100,64,64", "--view", out.to_str().unwrap()]);
+    assert_eq!(code, 1, "--dims 100,64,64: {err}");
+    assert!(err.contains("dims (x)") && err.contains("100"), "{err}");
+    let (code, err) = vct(&["voxelize", "--dims", "64,64", "--view", out.to_str().unwrap()]);
+    assert_eq!(code, 2, "--dims 64,64: {err}");
+    assert!(err.contains("--dims"), "{err}");
     let empty = write(&d, "empty.obj", "# nothing here\nv 0 0 0\n");
     let (code, err) = vct(&["render", empty.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert_eq!(code, 1);

@@ -216,6 +216,7 @@ struct ProbePush {
     step: f32,
     flags: u32,
     count: u32,
+    max_level: f32,
 }
 
 #[test]
@@ -304,7 +305,7 @@ fn gpu_cone_tracing_agrees_with_the_cpu_model() {
         set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &probe_buf);
         set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &results);
         let pipeline =
-            Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 32)
+            Pipeline::compute(&ctx, "cone probe", Stage::new(c, shaders::GI_CONE_PROBE_COMP), &[set.layout], 36)
                 .unwrap();
         let flags = (vct::config::CONE_FLAG_OPACITY_CORRECTION * params.opacity_correction as u32)
             | (vct::config::CONE_FLAG_SELF_CLAMP * params.self_clamp as u32);
@@ -317,6 +318,7 @@ fn gpu_cone_tracing_agrees_with_the_cpu_model() {
             step: params.step,
             flags,
             count: probes.len() as u32,
+            max_level: (volume.levels.len() - 1) as f32,
         };
         ctx.submit_and_wait("cone probes", |cmd| {
             pipeline.bind(cmd, &[set.raw]);

@@ -22,13 +22,13 @@ fn no_msaa() -> VoxelizeMethod {
 
 /// A grid of unit voxels from the origin.
 fn unit_grid(n: u32) -> VoxelGrid {
-    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, resolution: n }
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n) }
 }
 
 fn accuracy(scene: &Scene, run: &VoxelRun) -> Accuracy {
     let g = run.grid;
     let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
-    RefGrid { origin: g.origin, voxel: g.voxel, n: g.resolution }.coverage(&tris, 1e-3).accuracy(&run.occupied())
+    RefGrid::matching(&g).coverage(&tris, 1e-3).accuracy(&run.occupied())
 }
 
 /// Voxelizes single triangles in a 32³ unit grid with `method`; returns the accuracy.
@@ -215,7 +215,7 @@ fn binvox_round_trips() {
     binvox::write(&path, &run.grid, &run.occupied()).unwrap();
     let (grid, occupied) = binvox::read(&path).unwrap();
     assert_eq!(occupied, run.occupied());
-    assert_eq!(grid.resolution, run.grid.resolution);
+    assert_eq!(grid.dims, run.grid.dims);
     assert!((grid.origin - run.grid.origin).length() < 1e-5 && (grid.voxel - run.grid.voxel).abs() < 1e-5);
     common::assert_clean(&ctx);
 }

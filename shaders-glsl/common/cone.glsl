@@ -31,7 +31,8 @@ struct ConeParams {
     float bias;        // start offset along the surface normal (voxels)
     float start;       // initial distance along the cone (voxels)
     float lod_offset;  // added to log2(diameter)
-    float resolution;  // N
+    vec3 dims;         // voxels along each axis
+    float max_level;   // the coarsest mip level
     float step;        // step length over the sampled level's texel size
     uint flags;        // CONE_FLAG_*
     float surface;     // how far the receiving surface's own voxels may reach above the start's
@@ -78,16 +79,18 @@ struct March {
 bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, ConeParams p, out vec3 pos,
                  out float level, out float step) {
     float diameter = max(2.0 * m.dist * tan_half, 1.0);
-    pos = start + m.dist * dir / p.resolution;
+    pos = start + m.dist * dir / p.dims;
     float l = log2(diameter) + p.lod_offset;
     if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) l = min(l, self_clamp_level(p.bias + m.dist * rise, p.surface));
-    level = max(l, 0.0);
+    // Past the coarsest level (a grid's shortest axis is one texel there) a texel no longer
+    // grows with the cone: the cone samples that level, stepping by its texel.
+    level = clamp(l, 0.0, p.max_level);
     step = p.step * exp2(level);
     // The cone has left the volume once its sample's trilinear filter no longer reaches inside:
     // half a texel of its level beyond the edge. Stopping at the edge itself cut short the filter
     // of every texel on the boundary, so walls the grid is fitted to lost a fifth of their light.
-    float reach = 0.5 * exp2(level) / p.resolution;
-    return all(greaterThan(pos, vec3(-reach))) && all(lessThan(pos, vec3(1.0 + reach)));
+    vec3 reach = 0.5 * exp2(level) / p.dims;
+    return all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
 }
 
 // The share of light with radiance moment `m` (xyz: sum of luminance times lit normal; w:
@@ -138,7 +141,7 @@ vec4 finish(March m) {
 // The thesis' march through the isotropic volume.
 vec4 march_iso(sampler3D volume, sampler3D moment, vec3 uvw, vec3 normal, vec3 dir, float tan_half, ConeParams p) {
     bool face = (p.flags & CONE_FLAG_FACING) != 0u;
-    vec3 start = uvw + p.bias * normal / p.resolution;
+    vec3 start = uvw + p.bias * normal / p.dims;
     float rise = dot(dir, normal);
     March m = March(vec3(0.0), 0.0, p.start);
     vec3 pos;
@@ -158,7 +161,7 @@ vec4 march_iso(sampler3D volume, sampler3D moment, vec3 uvw, vec3 normal, vec3 d
 vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, vec3 normal, vec3 dir, float tan_half,
                  ConeParams p) {
     bool face = (p.flags & CONE_FLAG_FACING) != 0u;
-    vec3 start = uvw + p.bias * normal / p.resolution;
+    vec3 start = uvw + p.bias * normal / p.dims;
     float rise = dot(dir, normal);
     vec3 w = dir * dir;
     bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;

@@ -16,16 +16,27 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 light_cone;    // x: inner half-angle, y: outer half-angle (radians); z: shadow texel size (uv)
     vec4 viewport;      // xy: render size in pixels
     vec4 voxel_origin;  // xyz: voxel grid origin (world); w: voxel size
-    vec4 voxel_grid;    // x: resolution N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
+    vec4 voxel_grid;    // x: longest axis N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
     vec4 cone;          // x: max steps; y: bias along the normal (voxels); z: start distance (voxels); w: LOD offset
     vec4 cone_model;    // x: surface cones in `cones`; y: step (of a texel); z: CONE_FLAG_*; w: bounce cones (from MAX_CONES)
     vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0)
     vec4 history_shift; // xyz: this frame's grid origin in the previous frame's grid (voxels)
+    vec4 voxel_dims;    // xyz: voxels along each axis
 } frame;
+
+// World position to voxel coordinates (voxel v spans [v, v + 1)).
+vec3 world_to_voxel(vec3 p) {
+    return (p - frame.voxel_origin.xyz) / frame.voxel_origin.w;
+}
 
 // World position to normalized voxel-texture coordinates [0, 1]^3.
 vec3 world_to_uvw(vec3 p) {
-    return (p - frame.voxel_origin.xyz) / (frame.voxel_origin.w * frame.voxel_grid.x);
+    return world_to_voxel(p) / frame.voxel_dims.xyz;
+}
+
+// Whether voxel `v` lies inside the grid.
+bool voxel_in_grid(ivec3 v) {
+    return all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, ivec3(frame.voxel_dims.xyz)));
 }
 
 struct Material {

@@ -7,9 +7,15 @@
 
 layout(set = 2, binding = 0) uniform VoxelParams {
     vec4 origin_size;   // xyz: grid origin (world); w: voxel edge length
-    uvec4 grid;         // x: resolution N; y: flags (VOXEL_FLAG_*)
+    uvec4 grid;         // x: the longest axis N (the raster framebuffer is N x N); y: flags (VOXEL_FLAG_*)
     vec4 tess;          // x: tessellation level scale; y: max tessellation level; z: raster viewport scale
+    uvec4 dims;         // xyz: voxels along each axis
 } voxel;
+
+// Whether voxel `coord` lies inside the grid.
+bool in_grid(ivec3 coord) {
+    return all(greaterThanEqual(coord, ivec3(0))) && all(lessThan(coord, ivec3(voxel.dims.xyz)));
+}
 
 layout(set = 2, binding = 1, r32ui) uniform coherent volatile uimage3D voxel_albedo;
 layout(set = 2, binding = 2, r32ui) uniform coherent volatile uimage3D voxel_normal;
@@ -57,8 +63,7 @@ void atomic_average(uint which, ivec3 coord, vec3 value) {
 
 // Writes one voxel sample (albedo, unit normal, emission) if `coord` lies inside the grid.
 void write_voxel(ivec3 coord, vec3 albedo, vec3 normal, vec3 emission) {
-    int n = int(voxel.grid.x);
-    if (any(lessThan(coord, ivec3(0))) || any(greaterThanEqual(coord, ivec3(n)))) return;
+    if (!in_grid(coord)) return;
     atomic_average(0u, coord, clamp(albedo, 0.0, 1.0));
     atomic_average(1u, coord, normalize(normal) * 0.5 + 0.5);
     if (max(emission.r, max(emission.g, emission.b)) > 0.0) imageAtomicMax(voxel_emission, coord, encode_rgb9e5(emission));

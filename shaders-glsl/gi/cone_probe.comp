@@ -1,5 +1,5 @@
 #version 460
-// Test probe: traces one cone per invocation through a given radiance volume with the
+// Test probe: traces one cone per invocation through a given (cubic) radiance volume with the
 // renderer's own trace_cone (common/cone.glsl), so tests can compare it with a CPU model.
 #include "config.h"
 #include "cone.glsl"
@@ -17,6 +17,7 @@ layout(set = 0, binding = 1, std430) readonly buffer Probes { Probe probes[]; };
 layout(set = 0, binding = 2, std430) writeonly buffer Results { vec4 results[]; };
 layout(push_constant) uniform Push {
     int steps; float bias; float start; float lod_offset; float resolution; float step; uint flags; uint count;
+    float max_level;
 } push;
 
 void main() {
@@ -24,6 +25,7 @@ void main() {
     if (i >= push.count) return;
     Probe p = probes[i];
     ConeParams params =
-        ConeParams(push.steps, push.bias, push.start, push.lod_offset, push.resolution, push.step, push.flags, 0.5);
+        ConeParams(push.steps, push.bias, push.start, push.lod_offset, vec3(push.resolution), push.max_level, push.step,
+                   push.flags, 0.5);
     results[i] = trace_cone(volume, p.uvw_aperture.xyz, p.normal.xyz, p.dir.xyz, p.uvw_aperture.w, params);
 }

@@ -16,8 +16,8 @@ layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
 layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
 // direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0;
-// src_y, dst_y: where the chain's block starts in src and dst (texels); size: the level's extent.
-layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint dst_y; uint size; } push;
+// src_y, dst_y: where the chain's block starts in src and dst (texels).
+layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint dst_y; } push;
 
 // The child at `v` as seen by a cone travelling along `dir`: its light only where the light
 // leaves towards the cone (against `dir`), with a soft edge for grazing normals.
@@ -32,7 +32,9 @@ vec4 child(ivec3 v, vec3 dir) {
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, ivec3(push.size)))) return;
+    // The level's extent: the atlas' blocks are ANISO_BLOCKS high.
+    ivec3 size = imageSize(dst) / ivec3(1, ANISO_BLOCKS, 1);
+    if (any(greaterThanEqual(v, size))) return;
     int axis = int(push.direction / 2u);
     bool positive = (push.direction & 1u) == 0u;
     ivec3 step = ivec3(0);

@@ -40,17 +40,16 @@ void main() {
     // walking the ray back towards the light (INJECT_SEARCH_VOXELS at most), else the one just
     // behind the point: a wall thinner than a voxel must not light its far side.
     vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
-    float n = frame.voxel_grid.x;
     float step = 0.25 * frame.voxel_origin.w;
     ivec3 v = ivec3(-1);
     uint a = 0u;
     // In voxel units, from a quarter voxel before the point, one voxel at a time: a step no
     // longer than a voxel cannot jump over a wall's voxel layer. Mostly two loads: the surface's
     // voxel and the empty one before it.
-    vec3 g = world_to_uvw(p) * n - l_dir * 0.25;
+    vec3 g = world_to_voxel(p) - l_dir * 0.25;
     for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= l_dir) {
         ivec3 u = ivec3(floor(g));
-        if (any(lessThan(u, ivec3(0))) || any(greaterThanEqual(u, ivec3(n)))) break;
+        if (!voxel_in_grid(u)) break;
         uint b = imageLoad(voxel_albedo, u).r;
         if ((b >> 24) != 0u) {
             v = u;
@@ -60,8 +59,8 @@ void main() {
         }
     }
     if ((a >> 24) == 0u) {
-        v = ivec3(floor(world_to_uvw(p + l_dir * step) * n));
-        if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) return;
+        v = ivec3(floor(world_to_voxel(p + l_dir * step)));
+        if (!voxel_in_grid(v)) return;
         a = imageLoad(voxel_albedo, v).r;
         if ((a >> 24) == 0u) return;
     }

@@ -25,15 +25,15 @@ void main() {
     vec3 color = vec3(0.0);
     bool radiance = uint(frame.view.x) == VIEW_RADIANCE;
     float level = radiance ? frame.view.y : 0.0;
-    float n = frame.voxel_grid.x / exp2(level);
-    float step = 0.5 / n;
+    // Half a texel of the level along the longest axis (the finest in texture space).
+    float step = 0.5 * exp2(level) / frame.voxel_grid.x;
     for (float t = tmin; t < tmax; t += step) {
         vec3 p = o + d * t;
         if (radiance) {
             vec4 s = textureLod(radiance_volume, p, level);
             if (s.a > 0.3) { color = s.rgb / s.a; break; }
         } else {
-            uint a = imageLoad(voxel_albedo, ivec3(floor(p * frame.voxel_grid.x))).r;
+            uint a = imageLoad(voxel_albedo, ivec3(floor(p * frame.voxel_dims.xyz))).r;
             if ((a >> 24) != 0u) {
                 color = vec3(float(a & 0xffu), float((a >> 8) & 0xffu), float((a >> 16) & 0xffu)) / 255.0;
                 break;

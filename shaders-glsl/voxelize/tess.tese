@@ -30,10 +30,9 @@ void main() {
     write_voxel(own, albedo, normal, m.emissive.rgb);
     if ((voxel.grid.y & VOXEL_FLAG_NEIGHBOURS) != 0u) {
         vec3 p0 = to_voxel_space(in_world[0]), p1 = to_voxel_space(in_world[1]), p2 = to_voxel_space(in_world[2]);
-        int n = int(voxel.grid.x);
         for (int i = 0; i < 27; i++) {
             ivec3 c = own + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;
-            if (i == 13 || any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(n)))) continue;
+            if (i == 13 || !in_grid(c)) continue;
             vec3 centre = vec3(c) + 0.5;
             if (imageLoad(voxel_albedo, c).r == 0u &&
                 triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, vec3(0.5))) {

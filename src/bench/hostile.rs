@@ -49,7 +49,7 @@ pub fn run(
         let scene = Scene::load(&mesh_path(name))?;
         let grid = VoxelGrid::fit(&scene.mesh.bounds, resolution)?;
         let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
-        let exact = RefGrid { origin: grid.origin, voxel: grid.voxel, n: grid.resolution }.coverage(&tris, 1e-3);
+        let exact = RefGrid::matching(&grid).coverage(&tris, 1e-3);
         for &m in methods {
             progress(&format!("hostile geometry: {name}, {}", m.label()));
             let run = voxelize_in(ctx, &scene, m, grid, 3)?;

@@ -185,7 +185,7 @@ pub fn reference_cached(
 fn voxel_accuracy(scene: &Scene, renderer: &Renderer) -> Result<Accuracy> {
     let g = renderer.voxels.grid;
     let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
-    let coverage = RefGrid { origin: g.origin, voxel: g.voxel, n: g.resolution }.coverage(&tris, 1e-3);
+    let coverage = RefGrid::matching(&g).coverage(&tris, 1e-3);
     Ok(coverage.accuracy(&occupancy_of(&renderer.voxels.read_albedo()?)))
 }
 

@@ -49,7 +49,7 @@ pub struct Regime {
 pub fn voxel_accuracy(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid) -> Result<Accuracy> {
     let run = voxelize_in(ctx, scene, method, grid, 1)?;
     let tris: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
-    let cov = RefGrid { origin: grid.origin, voxel: grid.voxel, n: grid.resolution }.coverage(&tris, 1e-3);
+    let cov = RefGrid::matching(&grid).coverage(&tris, 1e-3);
     Ok(cov.accuracy(&run.occupied()))
 }
 
@@ -58,7 +58,7 @@ fn recall(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: Voxel
 }
 
 fn unit_grid(n: u32) -> VoxelGrid {
-    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, resolution: n }
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n) }
 }
 
 fn tess(subdivide: bool) -> VoxelizeMethod {

@@ -46,6 +46,19 @@ impl ImageDesc {
         self.mip_levels = levels;
         self
     }
+
+    /// Bytes of texel data over every mip level (what the image holds, before the driver's
+    /// alignment and tiling).
+    pub fn texel_bytes(&self) -> u64 {
+        let e = self.extent;
+        (0..self.mip_levels)
+            .map(|l| {
+                let d = |v: u32| (v >> l).max(1) as u64;
+                d(e.width) * d(e.height) * d(e.depth)
+            })
+            .sum::<u64>()
+            * texel_size(self.format) as u64
+    }
 }
 
 pub fn is_depth(format: vk::Format) -> bool {
@@ -117,6 +130,8 @@ pub struct Image {
     /// One view per mip level (for storage writes and per-level sampling).
     pub mip_views: Vec<ImageView>,
     pub name: String,
+    /// Bytes of device memory bound to the image (the driver's requirement).
+    pub bytes: u64,
 }
 
 impl Image {
@@ -158,7 +173,16 @@ impl Image {
         } else {
             Vec::new()
         };
-        Ok(Image { ctx: ctx.clone(), raw, allocation: Some(allocation), desc, view, mip_views, name: name.to_string() })
+        Ok(Image {
+            ctx: ctx.clone(),
+            raw,
+            allocation: Some(allocation),
+            desc,
+            view,
+            mip_views,
+            name: name.to_string(),
+            bytes: requirements.size,
+        })
     }
 
     /// The view of one mip level (the default view when there is only one).

@@ -83,7 +83,8 @@ impl MipVolume {
                 // A point on the surface; the blended level above must stay clear too.
                 l = l.min(((height - 0.5) / 1.5).max(1.0).log2() - 1.0);
             }
-            let l = l.max(0.0);
+            // No coarser than the chain's last level (the texel stops growing with the cone).
+            let l = l.clamp(0.0, (self.levels.len() - 1) as f32);
             // Inside while the sample's filter reaches the volume: half a texel of its level.
             let reach = 0.5 * l.exp2() * scale;
             if pos.min_element() <= -reach || pos.max_element() >= 1.0 + reach {

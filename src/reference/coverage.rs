@@ -10,12 +10,13 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-/// The grid the reference works on: `n`³ cubes of edge `voxel` from `origin` (world units).
+/// The grid the reference works on: `dims` cubes of edge `voxel` along x, y and z from `origin`
+/// (world units).
 #[derive(Clone, Copy, Debug)]
 pub struct RefGrid {
     pub origin: Vec3,
     pub voxel: f32,
-    pub n: u32,
+    pub dims: [u32; 3],
 }
 
 /// Separating-axis test of a triangle against the box centred at the origin with half-size `h`.
@@ -53,10 +54,10 @@ pub fn triangle_box_overlap(v: [DVec3; 3], h: DVec3) -> bool {
     true
 }
 
-/// Exact coverage as two bit sets over the grid (index `x + n*(y + n*z)`).
+/// Exact coverage as two bit sets over the grid (index `x + nx*(y + ny*z)`).
 #[derive(Clone, Debug)]
 pub struct Coverage {
-    pub n: u32,
+    pub dims: [u32; 3],
     pub required: Vec<bool>,
     pub allowed: Vec<bool>,
     /// Voxel pairs on either side of a face that lies in a layer boundary: one must be filled.
@@ -72,14 +73,20 @@ fn boundary_plane(p: &[DVec3; 3], eps: f64) -> Option<(usize, i64)> {
 }
 
 impl RefGrid {
+    /// The same grid as a renderer's (its origin, voxel size and dims, read as plain numbers).
+    pub fn matching(grid: &crate::voxel::VoxelGrid) -> Self {
+        RefGrid { origin: grid.origin, voxel: grid.voxel, dims: grid.dims.into() }
+    }
+
     pub fn index(&self, x: u32, y: u32, z: u32) -> usize {
-        (x + self.n * (y + self.n * z)) as usize
+        let [nx, ny, _] = self.dims;
+        x as usize + nx as usize * (y as usize + ny as usize * z as usize)
     }
 
     /// Voxels each triangle touches; `eps` is the fairness margin in voxels (e.g. 0.001).
     pub fn coverage(&self, triangles: &[[Vec3; 3]], eps: f64) -> Coverage {
-        let n = self.n as i64;
-        let len = (self.n as usize).pow(3);
+        let n = self.dims.map(|d| d as i64);
+        let len = self.dims.iter().map(|&d| d as usize).product();
         // Per triangle: (voxel, required) hits and boundary-face pairs.
         type Hits = (Vec<(usize, bool)>, Vec<(usize, usize)>);
         let per_triangle: Vec<Hits> = triangles
@@ -92,10 +99,10 @@ impl RefGrid {
                 }
                 let lo = p[0].min(p[1]).min(p[2]) - eps;
                 let hi = p[0].max(p[1]).max(p[2]) + eps;
-                let r = |f: f64| (f.floor() as i64).clamp(0, n - 1);
-                let (x0, y0, z0) = (r(lo.x), r(lo.y), r(lo.z));
-                let (x1, y1, z1) = (r(hi.x), r(hi.y), r(hi.z));
-                if hi.x < 0.0 || hi.y < 0.0 || hi.z < 0.0 || lo.x > n as f64 || lo.y > n as f64 || lo.z > n as f64 {
+                let r = |f: f64, a: usize| (f.floor() as i64).clamp(0, n[a] - 1);
+                let (x0, y0, z0) = (r(lo.x, 0), r(lo.y, 1), r(lo.z, 2));
+                let (x1, y1, z1) = (r(hi.x, 0), r(hi.y, 1), r(hi.z, 2));
+                if (0..3).any(|a| hi[a] < 0.0 || lo[a] > n[a] as f64) {
                     return (Vec::new(), Vec::new());
                 }
                 let plane = boundary_plane(&p, eps);
@@ -158,7 +165,7 @@ impl RefGrid {
         pairs.dedup();
         // A pair already satisfied by a required voxel adds nothing.
         pairs.retain(|&(a, b)| !required[a] && !required[b]);
-        Coverage { n: self.n, required, allowed, pairs }
+        Coverage { dims: self.dims, required, allowed, pairs }
     }
 }
 
@@ -201,7 +208,7 @@ mod tests {
     use super::*;
 
     fn grid(n: u32) -> RefGrid {
-        RefGrid { origin: Vec3::ZERO, voxel: 1.0, n }
+        RefGrid { origin: Vec3::ZERO, voxel: 1.0, dims: [n; 3] }
     }
 
     #[test]
@@ -243,7 +250,7 @@ mod tests {
     #[test]
     fn accuracy_figures() {
         let c = Coverage {
-            n: 1,
+            dims: [4, 1, 1],
             required: vec![true, true, false, false],
             allowed: vec![true, true, true, false],
             pairs: vec![],

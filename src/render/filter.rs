@@ -27,7 +27,8 @@ pub struct FilterPass {
     /// `levels - 1 + l - 1` does so for the moment.
     sets: DescriptorSet,
     moment_set: DescriptorSet,
-    resolution: u32,
+    /// Level 0's extent (voxels along each axis).
+    dims: [u32; 3],
     levels: u32,
 }
 
@@ -75,7 +76,7 @@ impl FilterPass {
             "anisotropic mip filter",
             Stage::new(c, shaders::GI_FILTER_ANISO_COMP),
             &[aniso_sets.layout],
-            20,
+            16,
         )?;
         Ok(FilterPass {
             ctx: ctx.clone(),
@@ -86,14 +87,16 @@ impl FilterPass {
             offsets,
             sets,
             moment_set,
-            resolution: volume.radiance.desc.extent.width,
+            dims: {
+                let e = volume.radiance.desc.extent;
+                [e.width, e.height, e.depth]
+            },
             levels: volume.levels,
         })
     }
 
     fn dispatch_level(&self, cmd: vk::CommandBuffer, level: u32) {
-        let n = (self.resolution >> level).max(1);
-        gpu::dispatch(&self.ctx, cmd, [n, n, n], [WORKGROUP_3D; 3]);
+        gpu::dispatch(&self.ctx, cmd, self.dims.map(|n| (n >> level).max(1)), [WORKGROUP_3D; 3]);
     }
 
     /// Builds the isotropic chain, the moment (when `moment`) and, when `anisotropic`, the six
@@ -118,11 +121,10 @@ impl FilterPass {
         if anisotropic {
             for level in 1..self.levels {
                 self.aniso_pipeline.bind(cmd, &[self.aniso_sets.sets[level as usize - 1]]);
-                let size = (self.resolution >> level).max(1);
                 for d in 0..6 {
                     let src = if level == 1 { 0 } else { self.offsets[d][level as usize - 2] };
                     let dst = self.offsets[d][level as usize - 1];
-                    self.aniso_pipeline.push(cmd, &[d as u32, (level == 1) as u32, src, dst, size]);
+                    self.aniso_pipeline.push(cmd, &[d as u32, (level == 1) as u32, src, dst]);
                     self.dispatch_level(cmd, level);
                 }
                 gpu::memory_barrier(&self.ctx, cmd, w, r);

@@ -154,7 +154,7 @@ impl FrameUniforms {
             viewport: Vec4::new(camera.width as f32, camera.height as f32, 0.0, 0.0),
             voxel_origin: f.grid.origin.extend(f.grid.voxel),
             voxel_grid: Vec4::new(
-                f.grid.resolution as f32,
+                f.grid.longest() as f32,
                 f.mip_levels as f32,
                 f.gi.temporal,
                 f.first_frame as u32 as f32,
@@ -163,6 +163,7 @@ impl FrameUniforms {
             cone_model: Vec4::new(f.cone_count as f32, f.gi.step, f.gi.cone_flags() as f32, f.bounce_cone_count as f32),
             view: Vec4::new(f.view.code() as f32, level as f32, f.gi_on as u32 as f32, 0.0),
             history_shift: ((f.grid.origin - f.previous_origin) / f.grid.voxel).extend(0.0),
+            voxel_dims: f.grid.dims.as_vec3().extend(0.0),
         }
     }
 }

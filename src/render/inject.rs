@@ -23,7 +23,8 @@ pub struct InjectPass {
     inject: Pipeline,
     inject_set: DescriptorSet,
     _depth_sampler: Sampler,
-    resolution: u32,
+    /// The grid's voxels along each axis.
+    dims: [u32; 3],
     shadow_resolution: u32,
 }
 
@@ -91,7 +92,7 @@ impl InjectPass {
             inject,
             inject_set,
             _depth_sampler: depth_sampler,
-            resolution: voxels.grid.resolution,
+            dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
         })
     }
@@ -107,11 +108,10 @@ impl InjectPass {
         light: bool,
     ) {
         let ctx = &self.ctx;
-        let n = self.resolution;
         let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         occupied.record_reset(cmd);
         self.resolve.bind(cmd, &[self.resolve_set.raw]);
-        gpu::dispatch(ctx, cmd, [n, n, n], [WORKGROUP_3D; 3]);
+        gpu::dispatch(ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
         gpu::clear_to_general(ctx, cmd, &radiance.lit_side, scope::ANY);
         gpu::memory_barrier(ctx, cmd, w, r);
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);

@@ -139,8 +139,10 @@ pub struct Follow {
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
     pub method: VoxelizeMethod,
-    /// Voxel grid resolution; `None`: the scene's.
+    /// Voxels along the grid's longest axis; `None`: the scene's.
     pub resolution: Option<u32>,
+    /// Voxels along each axis (overrides `resolution`); `None`: fitted to the scene's shape.
+    pub dims: Option<glam::UVec3>,
     pub view: View,
     pub gi: bool,
     pub tracing: Tracing,
@@ -154,6 +156,7 @@ impl Default for RenderOptions {
             // Exact and the fastest (docs/benchmarks.md, "Hostile geometry").
             method: VoxelizeMethod::raster(crate::voxel::Coverage::Conservative),
             resolution: None,
+            dims: None,
             view: View::Full,
             gi: true,
             tracing: Tracing::default(),
@@ -205,9 +208,12 @@ fn shadow_texel_size(light: &Light, bounds: &crate::scene::Aabb, resolution: u32
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, options: RenderOptions) -> Result<Self> {
         let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
-        let grid = match options.follow {
-            Some(f) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
-            None => VoxelGrid::fit(&scene.mesh.bounds, resolution)?,
+        let grid = match (options.follow, options.dims) {
+            (Some(_), Some(_)) => {
+                return Err(crate::Error::param("dims", "a volume following the camera is a cube: give --res, not --dims"))
+            }
+            (Some(f), None) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
+            (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
         };
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
@@ -216,7 +222,7 @@ impl Renderer {
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
-        let radiance = RadianceVolume::new(ctx, resolution, gi.bounces > 1)?;
+        let radiance = RadianceVolume::new(ctx, &grid, gi.bounces > 1)?;
         let occupied = OccupiedVoxels::new(ctx, grid.voxel_count() as u64)?;
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied)?;
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance)?;
@@ -236,8 +242,9 @@ impl Renderer {
         let mut notes = voxelizer.notes();
         if grid.voxel < 1e-3 {
             notes.push(format!(
-                "voxels are {:.3} mm across: the scene is tiny for {resolution}³ (units are metres) — a lower resolution would do",
-                grid.voxel * 1e3
+                "voxels are {:.3} mm across: the scene is tiny for a {} grid (units are metres) — a lower resolution would do",
+                grid.voxel * 1e3,
+                grid.dims_label()
             ));
         }
         let texel = scene
@@ -363,7 +370,7 @@ impl Renderer {
     /// Centres a following volume on `anchor` (no effect on a fitted volume).
     pub fn follow(&mut self, anchor: glam::Vec3) -> Result<()> {
         if let Some(f) = self.options.follow {
-            let grid = VoxelGrid::around(anchor, f.extent, self.voxels.grid.resolution, f.snap)?;
+            let grid = VoxelGrid::around(anchor, f.extent, self.voxels.grid.longest(), f.snap)?;
             self.voxels.grid = grid;
             self.voxelizer.set_grid(&grid);
         }

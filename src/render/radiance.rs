@@ -8,6 +8,8 @@ use ash::vk;
 
 use crate::error::{Error, Result};
 use crate::gpu::{self, scope, Context, Image, ImageDesc, Sampler};
+use crate::voxel::volume::extent_of;
+use crate::voxel::VoxelGrid;
 
 pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 
@@ -36,8 +38,8 @@ pub struct RadianceVolume {
 }
 
 impl RadianceVolume {
-    /// `bounces`: also the target of the voxel-space bounce pass.
-    pub fn new(ctx: &Arc<Context>, resolution: u32, bounces: bool) -> Result<Self> {
+    /// Volumes over `grid`'s dims; `bounces`: also the target of the voxel-space bounce pass.
+    pub fn new(ctx: &Arc<Context>, grid: &VoxelGrid, bounces: bool) -> Result<Self> {
         let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, RADIANCE_FORMAT) };
         let need = vk::FormatFeatureFlags::STORAGE_IMAGE | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
         if !props.optimal_tiling_features.contains(need) {
@@ -47,40 +49,42 @@ impl RadianceVolume {
                 needed_by: "the radiance volume",
             });
         }
-        let levels = 32 - resolution.leading_zeros();
+        let levels = grid.mip_levels();
+        let extent = extent_of(grid.dims);
+        let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
         let storage =
             vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
-        let injected = Image::new(ctx, "injected radiance", ImageDesc::d3(RADIANCE_FORMAT, resolution, storage))?;
+        let injected = Image::new(ctx, "injected radiance", d3(storage))?;
         let radiance = Image::new(
             ctx,
             "radiance volume",
-            ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
+            d3(storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
         )?;
-        let chain = (resolution / 2).max(1);
+        let chain = (grid.dims / 2).max(glam::UVec3::ONE);
         let aniso = Image::new(
             ctx,
             "radiance directional chains",
             ImageDesc::d3_extent(
                 RADIANCE_FORMAT,
-                vk::Extent3D { width: chain, height: chain * crate::config::ANISO_BLOCKS, depth: chain },
+                vk::Extent3D { width: chain.x, height: chain.y * crate::config::ANISO_BLOCKS, depth: chain.z },
                 storage | vk::ImageUsageFlags::SAMPLED,
             )
             .mips((levels - 1).max(1)),
         )?;
         let lit_side =
-            Image::new(ctx, "lit side", ImageDesc::d3(crate::voxel::volume::VOXEL_FORMAT, resolution, storage))?;
+            Image::new(ctx, "lit side", ImageDesc::d3_extent(crate::voxel::volume::VOXEL_FORMAT, extent, storage))?;
         let history = Image::new(
             ctx,
             "radiance history",
-            ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED),
+            d3(storage | vk::ImageUsageFlags::SAMPLED),
         )?;
         let moment = Image::new(
             ctx,
             "radiance moment",
-            ImageDesc::d3(RADIANCE_FORMAT, resolution, storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
+            d3(storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
         )?;
         let bounced = bounces
-            .then(|| Image::new(ctx, "bounced radiance", ImageDesc::d3(RADIANCE_FORMAT, resolution, storage)))
+            .then(|| Image::new(ctx, "bounced radiance", d3(storage)))
             .transpose()?;
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
@@ -99,6 +103,13 @@ impl RadianceVolume {
             sampler: Sampler::linear_border(ctx, "radiance sampler")?,
             levels,
         })
+    }
+
+    /// The volumes, for the memory report.
+    pub fn images(&self) -> Vec<&Image> {
+        let mut v = vec![&self.injected, &self.radiance, &self.aniso, &self.lit_side, &self.history, &self.moment];
+        v.extend(&self.bounced);
+        v
     }
 
     /// Descriptor info for sampling the whole mip chain (GENERAL layout).

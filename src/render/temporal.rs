@@ -25,7 +25,8 @@ pub struct TemporalBlend {
     pipeline: Pipeline,
     /// One set per [`Source`] (the bounced one only when the volume has that image).
     sets: DescriptorSet,
-    resolution: u32,
+    /// Level 0's extent.
+    dims: [u32; 3],
 }
 
 impl TemporalBlend {
@@ -61,7 +62,10 @@ impl TemporalBlend {
             &[scene.set.layout, sets.layout],
             4,
         )?;
-        Ok(TemporalBlend { ctx: ctx.clone(), pipeline, sets, resolution: radiance.radiance.desc.extent.width })
+        Ok(TemporalBlend { ctx: ctx.clone(), pipeline, sets, dims: {
+            let e = radiance.radiance.desc.extent;
+            [e.width, e.height, e.depth]
+        } })
     }
 
     /// Keeps the previous frame's level 0 for the blend to reproject (before the first blend).
@@ -77,8 +81,7 @@ impl TemporalBlend {
         };
         self.pipeline.bind(cmd, &[scene.set.raw, set]);
         self.pipeline.push(cmd, &(history as u32));
-        let n = self.resolution;
-        gpu::dispatch(&self.ctx, cmd, [n, n, n], [WORKGROUP_3D; 3]);
+        gpu::dispatch(&self.ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
         gpu::memory_barrier(&self.ctx, cmd, scope::COMPUTE_WRITE, scope::COMPUTE_RW);
     }
 }

@@ -30,16 +30,11 @@ const ATTRS: [vk::VertexInputAttributeDescription; 2] = [
 /// Renders the occupied voxels of `run` as cubes seen from the scene's camera.
 pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Result<FrameImages> {
     let g = &run.grid;
-    let n = g.resolution;
     let mut instances: Vec<[u32; 2]> = Vec::new();
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                let v = run.albedo[g.index(x, y, z)];
-                if v >> 24 != 0 {
-                    instances.push([x | (y << 10) | (z << 20), v]);
-                }
-            }
+    for (i, &v) in run.albedo.iter().enumerate() {
+        if v >> 24 != 0 {
+            let c = g.coords(i);
+            instances.push([c.x | (c.y << 10) | (c.z << 20), v]);
         }
     }
     let cam = &scene.camera;

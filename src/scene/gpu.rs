@@ -45,6 +45,8 @@ pub struct FrameUniforms {
     pub view: Vec4,
     /// xyz: where this frame's voxel grid origin lies in the previous frame's grid (voxels).
     pub history_shift: Vec4,
+    /// xyz: voxels along each axis.
+    pub voxel_dims: Vec4,
 }
 
 pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [

@@ -254,7 +254,7 @@ impl App {
                 Self::rebuild(r, options)?;
             }
             KeyCode::Equal | KeyCode::NumpadAdd | KeyCode::Minus | KeyCode::NumpadSubtract => {
-                let now = r.renderer.voxels.grid.resolution;
+                let now = r.renderer.voxels.grid.longest();
                 let up = matches!(code, KeyCode::Equal | KeyCode::NumpadAdd);
                 let next = if up { (now * 2).min(512) } else { (now / 2).max(16) };
                 if next != now {
@@ -311,7 +311,7 @@ impl App {
         }
         if frame > 0 && frame.is_multiple_of(90) {
             let mut o = r.renderer.options;
-            let n = r.renderer.voxels.grid.resolution;
+            let n = r.renderer.voxels.grid.longest();
             o.resolution = Some(if (frame / 90) % 2 == 1 { n * 2 } else { n / 2 });
             Self::rebuild(r, o)?;
         }
@@ -379,7 +379,7 @@ impl App {
                 "vct — {:.1} fps — {} {}³ — GPU ms: {}",
                 r.title_frames as f32 / since,
                 r.renderer.options.method.label(),
-                r.renderer.voxels.grid.resolution,
+                r.renderer.voxels.grid.longest(),
                 passes.join(", ")
             ));
             r.title_at = now;

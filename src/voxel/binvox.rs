@@ -1,6 +1,7 @@
-//! The `.binvox` occupancy format (Patrick Min's binvox): an ASCII header giving `dim`,
-//! `translate` and `scale` of the grid, then run-length pairs (value, count ≤ 255) over the
-//! voxels in x-z-y order (y fastest, then z, then x).
+//! The `.binvox` occupancy format (Patrick Min's binvox): an ASCII header giving `dim` (voxels
+//! along x, y and z, as binvox-rw writes them), `translate` and `scale` (the longest axis' world
+//! length) of the grid, then run-length pairs (value, count ≤ 255) over the voxels in x-z-y
+//! order (y fastest, then z, then x).
 
 use std::io::{BufRead, Write};
 use std::path::Path;
@@ -10,31 +11,39 @@ use glam::Vec3;
 use super::VoxelGrid;
 use crate::error::{Error, Result};
 
-/// Voxel index in binvox order for (x, y, z).
-fn binvox_index(n: usize, x: usize, y: usize, z: usize) -> usize {
-    x * n * n + z * n + y
+/// Voxel index in binvox order for (x, y, z) in a grid of `d` voxels.
+fn binvox_index(d: [usize; 3], x: usize, y: usize, z: usize) -> usize {
+    (x * d[2] + z) * d[1] + y
+}
+
+/// Visits every voxel of a grid of `d` voxels.
+fn each_voxel(d: [usize; 3], mut f: impl FnMut(usize, usize, usize)) {
+    for z in 0..d[2] {
+        for y in 0..d[1] {
+            for x in 0..d[0] {
+                f(x, y, z);
+            }
+        }
+    }
 }
 
 /// Writes `occupied` (indexed by [`VoxelGrid::index`]) as a binvox file.
 pub fn write(path: &Path, grid: &VoxelGrid, occupied: &[bool]) -> Result<()> {
-    let n = grid.resolution as usize;
-    let mut ordered = vec![false; n * n * n];
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                ordered[binvox_index(n, x, y, z)] = occupied[grid.index(x as u32, y as u32, z as u32)];
-            }
-        }
-    }
+    let d = grid.dims.to_array().map(|v| v as usize);
+    let mut ordered = vec![false; grid.voxel_count()];
+    each_voxel(d, |x, y, z| ordered[binvox_index(d, x, y, z)] = occupied[grid.index(x as u32, y as u32, z as u32)]);
     let mut out = Vec::new();
     let o = grid.origin;
     write!(
         out,
-        "#binvox 1\ndim {n} {n} {n}\ntranslate {} {} {}\nscale {}\ndata\n",
+        "#binvox 1\ndim {} {} {}\ntranslate {} {} {}\nscale {}\ndata\n",
+        d[0],
+        d[1],
+        d[2],
         o.x,
         o.y,
         o.z,
-        grid.voxel * n as f32
+        grid.voxel * grid.longest() as f32
     )
     .expect("writing to memory");
     let mut i = 0;
@@ -69,10 +78,10 @@ pub fn read(path: &Path) -> Result<(VoxelGrid, Vec<bool>)> {
             Some("#binvox") => {}
             Some("dim") => {
                 let d = nums(&words[1..]).map_err(|_| bad("bad dim"))?;
-                if d.len() != 3 || d[0] != d[1] || d[1] != d[2] || d[0] < 1.0 {
-                    return Err(bad("vct reads cubic grids only"));
+                if d.len() != 3 || d.iter().any(|&v| v < 1.0 || v > 4096.0 || v.fract() != 0.0) {
+                    return Err(bad("dim must be three whole numbers in 1..=4096"));
                 }
-                dim = Some(d[0] as u32);
+                dim = Some([d[0] as usize, d[1] as usize, d[2] as usize]);
             }
             Some("translate") => {
                 let t = nums(&words[1..]).map_err(|_| bad("bad translate"))?;
@@ -83,23 +92,22 @@ pub fn read(path: &Path) -> Result<(VoxelGrid, Vec<bool>)> {
             _ => return Err(bad(&format!("unexpected header line '{}'", line.trim()))),
         }
     }
-    let n = dim.ok_or_else(|| bad("missing dim"))? as usize;
-    let grid = VoxelGrid { origin: translate, voxel: scale / n as f32, resolution: n as u32 };
+    let d = dim.ok_or_else(|| bad("missing dim"))?;
+    let dims = glam::UVec3::new(d[0] as u32, d[1] as u32, d[2] as u32);
+    let grid = VoxelGrid { origin: translate, voxel: scale / dims.max_element() as f32, dims };
     let data = &bytes[cursor.position() as usize..];
-    let mut ordered = Vec::with_capacity(n * n * n);
+    let len = grid.voxel_count();
+    let mut ordered = Vec::with_capacity(len);
     for pair in data.chunks_exact(2) {
         ordered.extend(std::iter::repeat_n(pair[0] != 0, pair[1] as usize));
-    }
-    if ordered.len() != n * n * n {
-        return Err(bad(&format!("{} voxels of data for a {n}³ grid", ordered.len())));
-    }
-    let mut occupied = vec![false; n * n * n];
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                occupied[grid.index(x as u32, y as u32, z as u32)] = ordered[binvox_index(n, x, y, z)];
-            }
+        if ordered.len() > len {
+            break;
         }
     }
+    if ordered.len() != len {
+        return Err(bad(&format!("{} voxels of data for a {} grid", ordered.len(), grid.dims_label())));
+    }
+    let mut occupied = vec![false; len];
+    each_voxel(d, |x, y, z| occupied[grid.index(x as u32, y as u32, z as u32)] = ordered[binvox_index(d, x, y, z)]);
     Ok((grid, occupied))
 }

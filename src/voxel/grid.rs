@@ -1,7 +1,16 @@
-//! The voxel grid: a cube of N³ voxels fitted to the scene bounds and padded by one voxel on
-//! every side (Freed 2018 §4.1: the volume encloses the whole scene).
+//! The voxel grid: cubic voxels, each axis with its own count, fitted to the scene bounds and
+//! padded by one voxel on every side (Freed 2018 §4.1: the volume encloses the whole scene; it
+//! need not be a cube — a long hall is modelled by a long box of voxels, not by the cube around
+//! it).
+//!
+//! Every axis count is a power of two. The radiance volume's mip chain halves each axis exactly
+//! at every level (Vulkan rounds odd extents down, and a level whose texels no longer cover
+//! 2^L voxels would misplace every cone sample read from it), and the directional chains share
+//! one atlas stacked along y (render::radiance) that stays aligned only while its blocks halve
+//! exactly. A power of two per axis keeps a fitted grid within 2× of the bounds along each
+//! axis; the mip chain ends where the shortest axis reaches one texel.
 
-use glam::Vec3;
+use glam::{UVec3, Vec3};
 
 use crate::error::{Error, Result};
 use crate::scene::Aabb;
@@ -15,31 +24,70 @@ pub struct VoxelGrid {
     pub origin: Vec3,
     /// Edge length of one voxel (world units).
     pub voxel: f32,
-    pub resolution: u32,
+    /// Voxels along x, y and z (each a power of two in MIN_RESOLUTION..=MAX_RESOLUTION).
+    pub dims: UVec3,
+}
+
+fn check_axis(name: &'static str, n: u32) -> Result<()> {
+    if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&n) || !n.is_power_of_two() {
+        return Err(Error::param(
+            name,
+            format!("{n} is not a power of two in {MIN_RESOLUTION}..={MAX_RESOLUTION} (mip levels halve every axis exactly)"),
+        ));
+    }
+    Ok(())
+}
+
+fn check_bounds(bounds: &Aabb) -> Result<()> {
+    if bounds.is_empty() || !bounds.min.is_finite() || !bounds.max.is_finite() {
+        return Err(Error::param("scene", "the scene has no finite geometry to voxelize"));
+    }
+    Ok(())
 }
 
 impl VoxelGrid {
-    /// The grid of `resolution`³ voxels that holds `bounds` with one voxel of padding.
-    pub fn fit(bounds: &Aabb, resolution: u32) -> Result<Self> {
-        if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&resolution) {
-            return Err(Error::param("res", format!("{resolution} is outside {MIN_RESOLUTION}..={MAX_RESOLUTION}")));
-        }
-        if bounds.is_empty() || !bounds.min.is_finite() || !bounds.max.is_finite() {
-            return Err(Error::param("scene", "the scene has no finite geometry to voxelize"));
-        }
-        let extent = bounds.size().max_element().max(1e-6);
-        let voxel = extent / (resolution - 2) as f32;
-        let origin = bounds.center() - Vec3::splat(voxel * resolution as f32 * 0.5);
-        Ok(VoxelGrid { origin, voxel, resolution })
+    /// The fitted grid with `longest` voxels along the bounds' longest axis: cubic voxels sized so
+    /// that axis holds the bounds plus one voxel each side, and each other axis the smallest power
+    /// of two that holds its extent plus that padding.
+    pub fn fit(bounds: &Aabb, longest: u32) -> Result<Self> {
+        check_axis("res", longest)?;
+        check_bounds(bounds)?;
+        let size = bounds.size();
+        let voxel = size.max_element().max(1e-6) / (longest - 2) as f32;
+        let need = |e: f32| (((e / voxel).ceil() as u32).saturating_add(2)).next_power_of_two().clamp(MIN_RESOLUTION, longest);
+        let dims = UVec3::new(need(size.x), need(size.y), need(size.z));
+        Ok(Self::centred(bounds, voxel, dims))
     }
 
-    /// A grid of `extent` world units around `centre` (a volume following the camera). With
+    /// The grid of exactly `dims` voxels around `bounds`: the voxel is the smallest that fits the
+    /// bounds plus one voxel of padding along every axis.
+    pub fn fit_dims(bounds: &Aabb, dims: UVec3) -> Result<Self> {
+        for (name, n) in [("dims (x)", dims.x), ("dims (y)", dims.y), ("dims (z)", dims.z)] {
+            check_axis(name, n)?;
+        }
+        check_bounds(bounds)?;
+        let size = bounds.size().max(Vec3::splat(1e-6));
+        let voxel = (size / (dims - 2).as_vec3()).max_element();
+        Ok(Self::centred(bounds, voxel, dims))
+    }
+
+    fn centred(bounds: &Aabb, voxel: f32, dims: UVec3) -> Self {
+        VoxelGrid { origin: bounds.center() - dims.as_vec3() * voxel * 0.5, voxel, dims }
+    }
+
+    /// `dims` when given, else the fitted grid with `longest` voxels along the longest axis.
+    pub fn choose(bounds: &Aabb, longest: u32, dims: Option<UVec3>) -> Result<Self> {
+        match dims {
+            Some(d) => Self::fit_dims(bounds, d),
+            None => Self::fit(bounds, longest),
+        }
+    }
+
+    /// A cube of `extent` world units around `centre` (a volume following the camera). With
     /// `snap` the origin moves in whole voxels (Freed 2018 §4.1), so the voxelization of static
     /// geometry does not change as the centre slides.
     pub fn around(centre: Vec3, extent: f32, resolution: u32, snap: bool) -> Result<Self> {
-        if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&resolution) {
-            return Err(Error::param("res", format!("{resolution} is outside {MIN_RESOLUTION}..={MAX_RESOLUTION}")));
-        }
+        check_axis("res", resolution)?;
         if !(extent.is_finite() && extent > 0.0 && centre.is_finite()) {
             return Err(Error::param("follow", format!("volume extent {extent} around {centre} is not usable")));
         }
@@ -48,24 +96,57 @@ impl VoxelGrid {
         if snap {
             origin = (origin / voxel).floor() * voxel;
         }
-        Ok(VoxelGrid { origin, voxel, resolution })
+        Ok(VoxelGrid { origin, voxel, dims: UVec3::splat(resolution) })
     }
 
-    /// Bytes of GPU memory for the voxel textures: albedo, normal, emission (R32UI each) and
-    /// radiance with its mip chain (RGBA16F, 8/7 of the base level), its injection target, and
-    /// the six directional chains from level 1 (each 1/8 × 8/7 of the base).
-    pub fn memory_bytes(&self) -> u64 {
-        let n3 = (self.resolution as u64).pow(3);
-        3 * 4 * n3 + 8 * n3 * 8 / 7 + 8 * n3 + 6 * 8 * n3 / 7
+    /// Voxels along the longest axis (the `--res` the grid answers to).
+    pub fn longest(&self) -> u32 {
+        self.dims.max_element()
+    }
+
+    /// Voxels along the shortest axis.
+    pub fn shortest(&self) -> u32 {
+        self.dims.min_element()
+    }
+
+    /// Mip levels of the radiance volume: until the shortest axis is one texel.
+    pub fn mip_levels(&self) -> u32 {
+        32 - self.shortest().leading_zeros()
+    }
+
+    /// `x×y×z`, for messages.
+    pub fn dims_label(&self) -> String {
+        format!("{}×{}×{}", self.dims.x, self.dims.y, self.dims.z)
+    }
+
+    /// Bytes of GPU memory a renderer's volumes take at this grid, about: the voxel textures
+    /// (albedo, normal, emission: R32UI each), and the radiance volumes (RGBA16F): injection
+    /// target, history, mip-mapped radiance and moment (8/7 of a level each), the six
+    /// directional chains from level 1 (6/8 × 8/7), plus the R32UI lit side. For the check
+    /// before allocation; the renderer reports what it really allocated.
+    pub fn estimated_bytes(&self) -> u64 {
+        let n = self.voxel_count() as u64;
+        3 * 4 * n + 2 * 8 * n + 2 * 8 * n * 8 / 7 + 6 * 8 * n / 7 + 4 * n
     }
 
     pub fn voxel_count(&self) -> usize {
-        (self.resolution as usize).pow(3)
+        self.dims.x as usize * self.dims.y as usize * self.dims.z as usize
+    }
+
+    /// The grid's world-space box.
+    pub fn bounds(&self) -> Aabb {
+        Aabb { min: self.origin, max: self.origin + self.dims.as_vec3() * self.voxel }
     }
 
     /// Linear index of voxel (x, y, z), x fastest (the layout of a read-back 3D image).
     pub fn index(&self, x: u32, y: u32, z: u32) -> usize {
-        let n = self.resolution as usize;
-        x as usize + n * (y as usize + n * z as usize)
+        let (nx, ny) = (self.dims.x as usize, self.dims.y as usize);
+        x as usize + nx * (y as usize + ny * z as usize)
+    }
+
+    /// The coordinates of linear index `i` (the inverse of [`Self::index`]).
+    pub fn coords(&self, i: usize) -> UVec3 {
+        let (nx, ny) = (self.dims.x as usize, self.dims.y as usize);
+        UVec3::new((i % nx) as u32, ((i / nx) % ny) as u32, (i / (nx * ny)) as u32)
     }
 }

@@ -24,7 +24,8 @@ impl VoxelRun {
     }
 }
 
-/// Voxelizes `scene` at `resolution`³ (grid fitted to the scene) with `method`, timing
+/// Voxelizes `scene` on the grid fitted to it with `resolution` voxels along its longest axis,
+/// with `method`, timing
 /// `repeats` runs (the median time is reported, the last grid kept).
 pub fn voxelize(
     ctx: &Arc<Context>,

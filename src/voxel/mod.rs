@@ -120,6 +120,7 @@ pub struct VoxelParams {
     pub origin_size: [f32; 4],
     pub grid: [u32; 4],
     pub tess: [f32; 4],
+    pub dims: [u32; 4],
 }
 
 /// A voxelizer's parameters and the uniform buffer that holds them.
@@ -171,7 +172,8 @@ pub(crate) fn params_for(
 ) -> VoxelParams {
     VoxelParams {
         origin_size: grid.origin.extend(grid.voxel).into(),
-        grid: [grid.resolution, flags, 0, 0],
+        grid: [grid.longest(), flags, 0, 0],
+        dims: grid.dims.extend(0).into(),
         tess: [level_scale, max_level, viewport_scale, 0.0],
     }
 }

@@ -1,5 +1,5 @@
 //! Rasterized voxelizer (Freed 2018 §4.1.1): the geometry shader projects each triangle along
-//! its dominant axis onto an attachment-less N×N framebuffer; coverage is made conservative by
+//! its dominant axis onto an attachment-less N×N framebuffer (N the grid's longest axis); coverage is made conservative by
 //! 4× MSAA (the thesis' method), by hardware conservative rasterization where offered, by
 //! growing the triangle in the geometry shader (conservative without the extension), or not at
 //! all; the fragment shader writes the voxels the triangle really touches, with atomic averaging.
@@ -32,7 +32,7 @@ impl RasterVoxelizer {
         depth_span: bool,
     ) -> Result<Self> {
         let viewport_scale = viewport_scale.clamp(0.125, 8.0);
-        let size = ((volume.grid.resolution as f32 * viewport_scale).round() as u32).max(1);
+        let size = ((volume.grid.longest() as f32 * viewport_scale).round() as u32).max(1);
         let max = ctx.info.limits.max_framebuffer_width.min(ctx.info.limits.max_framebuffer_height);
         if size > max {
             return Err(crate::Error::param(

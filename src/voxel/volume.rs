@@ -28,6 +28,11 @@ pub fn voxel_write_scope() -> (vk::PipelineStageFlags2, vk::AccessFlags2) {
     )
 }
 
+/// The image extent of a grid's dims.
+pub fn extent_of(dims: glam::UVec3) -> vk::Extent3D {
+    vk::Extent3D { width: dims.x, height: dims.y, depth: dims.z }
+}
+
 fn largest_device_heap(ctx: &Context) -> u64 {
     let props = unsafe { ctx.instance.get_physical_device_memory_properties(ctx.physical) };
     props.memory_heaps[..props.memory_heap_count as usize]
@@ -40,14 +45,14 @@ fn largest_device_heap(ctx: &Context) -> u64 {
 
 impl VoxelVolume {
     pub fn new(ctx: &Arc<Context>, grid: VoxelGrid) -> Result<Self> {
-        let need = grid.memory_bytes();
+        let need = grid.estimated_bytes();
         let heap = largest_device_heap(ctx);
         if need > heap / 2 {
             return Err(Error::param(
                 "res",
                 format!(
-                    "a {}³ grid needs {} MiB of GPU memory; the device's largest heap has {} MiB",
-                    grid.resolution,
+                    "a {} grid needs {} MiB of GPU memory; the device's largest heap has {} MiB",
+                    grid.dims_label(),
                     need >> 20,
                     heap >> 20
                 ),
@@ -55,7 +60,7 @@ impl VoxelVolume {
         }
         let usage =
             vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
-        let desc = ImageDesc::d3(VOXEL_FORMAT, grid.resolution, usage);
+        let desc = ImageDesc::d3_extent(VOXEL_FORMAT, extent_of(grid.dims), usage);
         Ok(VoxelVolume {
             ctx: ctx.clone(),
             grid,
@@ -94,6 +99,11 @@ impl VoxelVolume {
     pub fn read_normal(&self) -> Result<Vec<u32>> {
         let bytes = gpu::read_image(&self.ctx, &self.normal, vk::ImageLayout::GENERAL, 0)?;
         Ok(bytemuck::cast_slice(&bytes).to_vec())
+    }
+
+    /// The textures, for the memory report.
+    pub fn images(&self) -> [&Image; 3] {
+        [&self.albedo, &self.normal, &self.emission]
     }
 }
 

@@ -235,6 +235,17 @@ pub enum OnOff {
     Off,
 }
 
+pub fn parse_dims(s: &str) -> std::result::Result<glam::UVec3, String> {
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<u32>().map_err(|_| format!("expected X,Y,Z (three whole numbers), got '{s}'")))
+        .collect::<std::result::Result<_, _>>()?;
+    match v[..] {
+        [x, y, z] => Ok(glam::UVec3::new(x, y, z)),
+        _ => Err(format!("expected X,Y,Z (three whole numbers), got '{s}'")),
+    }
+}
+
 pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s.split_once('x').ok_or_else(|| format!("expected WxH, got '{s}'"))?;
     let parse = |v: &str| v.parse::<u32>().map_err(|_| format!("bad size '{s}'"));
@@ -280,9 +291,14 @@ pub struct MethodArgs {
     /// grown by half a pixel in the geometry shader), or hardware (VK_EXT_conservative_rasterization).
     #[arg(long, value_enum, default_value = "conservative")]
     pub coverage: CoverageArg,
-    /// Voxel grid resolution N (N³ voxels, 16..512); default: the scene's.
+    /// Voxels along the scene's longest axis (a power of two, 16..512); the other axes are
+    /// fitted to the scene's shape. Default: the scene's.
     #[arg(long)]
     pub res: Option<u32>,
+    /// Voxels along x, y and z (powers of two, 16..512), e.g. 256,128,128 (256,256,256: the
+    /// bounding cube); overrides --res.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_dims)]
+    pub dims: Option<glam::UVec3>,
     /// Tessellation path: multiplier on the thesis' tessellation levels.
     #[arg(long, default_value_t = vct::voxel::DEFAULT_LEVEL_SCALE)]
     pub level_scale: f32,

@@ -16,7 +16,7 @@ use vct::gpu::{Context, ContextOptions, Feature, Timing};
 use vct::reference::coverage::RefGrid;
 use vct::render::{RenderOptions, Renderer, Tracing};
 use vct::scene::Scene;
-use vct::voxel::headless;
+use vct::voxel::{headless, VoxelGrid};
 
 fn load_scene(path: Option<&Path>) -> Result<Scene> {
     let scene = match path {
@@ -61,6 +61,7 @@ fn render(args: RenderArgs) -> Result<()> {
     let options = RenderOptions {
         method: args.scene.method.method()?,
         resolution: args.scene.method.res,
+        dims: args.scene.method.dims,
         view: args.view,
         gi: !args.no_gi,
         tracing,
@@ -86,7 +87,8 @@ fn render(args: RenderArgs) -> Result<()> {
             "driver": ctx.info.driver,
             "voxelizer": options.method.label(),
             "tracing": format!("{:?}", options.tracing),
-            "resolution": renderer.voxels.grid.resolution,
+            "resolution": renderer.voxels.grid.longest(),
+            "dims": renderer.voxels.grid.dims.to_array(),
             "width": frame.width,
             "height": frame.height,
             "passes": timings,
@@ -109,23 +111,19 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let method = args.method.method()?;
     let res = args.method.res.unwrap_or(scene.settings.voxel_resolution);
+    let grid = VoxelGrid::choose(&scene.mesh.bounds, res, args.method.dims)?;
     let ctx = open_device(&args.gpu)?;
-    let run = headless::voxelize(&ctx, &scene, method, res, 3).context("voxelizing")?;
+    let run = headless::voxelize_in(&ctx, &scene, method, grid, 3).context("voxelizing")?;
     for n in &run.notes {
         println!("{n}");
     }
     let g = run.grid;
-    println!(
-        "method: {}   grid: {res}³, voxel {:.4} m, {:.1} MiB",
-        method.label(),
-        g.voxel,
-        g.memory_bytes() as f64 / 1048576.0
-    );
+    println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
     let occupied = run.occupied();
     println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
     println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
     let triangles: Vec<_> = (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect();
-    let reference = RefGrid { origin: g.origin, voxel: g.voxel, n: g.resolution }.coverage(&triangles, 1e-3);
+    let reference = RefGrid::matching(&g).coverage(&triangles, 1e-3);
     let a = reference.accuracy(&occupied);
     println!(
         "against exact coverage: recall {:.4}  precision {:.4}  IoU {:.4}  ({} required voxels)",
@@ -151,6 +149,7 @@ fn view(args: ViewArgs) -> Result<()> {
         render: RenderOptions {
             method: args.scene.method.method()?,
             resolution: args.scene.method.res,
+            dims: args.scene.method.dims,
             follow: args.scene.follow(),
             ..Default::default()
         },

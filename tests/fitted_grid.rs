@@ -1,0 +1,117 @@
+//! Issue "Model no more than the scene needs", fitted grids: each axis of the voxel grid gets
+//! its own (power-of-two) count fitted to the scene's bounds, with cubic voxels. A non-cubic
+//! grid is checked against exact coverage, survives the binvox round trip, renders the same
+//! image as the bounding cube at the same voxel size, and bad dims are errors naming them.
+//! Lavapipe, validation on.
+
+mod common;
+
+use std::sync::Arc;
+
+use glam::{UVec3, Vec3};
+use vct::gpu::Context;
+use vct::reference::coverage::RefGrid;
+use vct::reference::metrics::flip;
+use vct::render::{RenderOptions, Renderer};
+use vct::scene::Scene;
+use vct::voxel::headless::voxelize_in;
+use vct::voxel::{binvox, Coverage, VoxelGrid, VoxelizeMethod};
+
+/// A long, low hall open to the sky: a floor 8 m along x and 2 m deep, a back wall 1.2 m high
+/// and three boxes, one slanted. Lit by the default sun, which reaches the floor and the boxes'
+/// tops and bounces light onto the wall.
+fn hall() -> Scene {
+    let mut tris = common::box_triangles(Vec3::new(-4.0, -0.1, -1.0), Vec3::new(4.0, 0.0, 1.0));
+    let wall = common::box_triangles(Vec3::new(-4.0, 0.0, -1.0), Vec3::new(4.0, 1.2, -0.9));
+    tris.extend(wall.into_iter().map(|(t, _)| (t, 1)));
+    for (x, h) in [(-2.5f32, 0.6f32), (0.0, 0.9), (2.5, 0.4)] {
+        tris.extend(common::box_triangles(Vec3::new(x - 0.3, 0.0, -0.4), Vec3::new(x + 0.3, h, 0.2)));
+    }
+    // A slanted panel: its voxels cross layers within a pixel column.
+    let p = [Vec3::new(-1.2, 0.05, 0.5), Vec3::new(-0.4, 0.7, 0.3), Vec3::new(-0.3, 0.1, 0.8)];
+    tris.push((p, 2));
+    Scene::from_triangles(&tris, &[Vec3::splat(0.75), Vec3::new(0.8, 0.3, 0.2), Vec3::new(0.2, 0.7, 0.3)])
+}
+
+fn triangles(scene: &Scene) -> Vec<[Vec3; 3]> {
+    (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect()
+}
+
+#[test]
+fn fitted_grid_follows_the_scene_shape_and_holds_its_bounds() {
+    let scene = hall();
+    let g = VoxelGrid::fit(&scene.mesh.bounds, 64).unwrap();
+    // 8 m over 62 voxels: 0.129 m; 1.3 m needs 13 voxels, 2 m 18 (with padding).
+    assert_eq!(g.dims, UVec3::new(64, 16, 32), "{}", g.dims_label());
+    let b = g.bounds();
+    let pad = scene.mesh.bounds.min - b.min;
+    assert!(pad.min_element() >= g.voxel * 0.99, "padding {pad} under a voxel {}", g.voxel);
+    assert!((b.max - scene.mesh.bounds.max).min_element() >= g.voxel * 0.99);
+    assert_eq!(g.mip_levels(), 5, "the chain ends where the shortest axis is one texel");
+    // Every axis is a power of two; the shortest is 16.
+    let e = VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::new(64, 48, 16)).unwrap_err().to_string();
+    assert!(e.contains("dims (y)") && e.contains("48"), "{e}");
+    // Too few voxels on a short axis: the voxel grows until the bounds fit.
+    let tight = VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::new(64, 16, 16)).unwrap();
+    assert!(tight.voxel > g.voxel && (tight.bounds().min - scene.mesh.bounds.min).min_element() <= 0.0);
+}
+
+#[test]
+fn non_cubic_grid_is_exact_against_coverage_and_round_trips_binvox() {
+    let ctx = common::context();
+    let scene = hall();
+    let tris = triangles(&scene);
+    for (dims, method) in [
+        (None, VoxelizeMethod::raster(Coverage::Conservative)),
+        (None, VoxelizeMethod::tess()),
+        (Some(UVec3::new(32, 16, 64)), VoxelizeMethod::raster(Coverage::Conservative)),
+    ] {
+        let grid = VoxelGrid::choose(&scene.mesh.bounds, 64, dims).unwrap();
+        let run = voxelize_in(&ctx, &scene, method, grid, 1).unwrap();
+        let occupied = run.occupied();
+        let a = RefGrid::matching(&grid).coverage(&tris, 1e-3).accuracy(&occupied);
+        println!("{} {}: {a:?}", grid.dims_label(), method.label());
+        assert!(a.recall >= 0.999 && a.precision >= 0.999, "{} {}: {a:?}", grid.dims_label(), method.label());
+        assert!(a.occupied > 400, "too little geometry for the test to mean much");
+        let path = std::env::temp_dir().join(format!("vct-fitted-{}.binvox", grid.dims_label()));
+        binvox::write(&path, &grid, &occupied).unwrap();
+        let (back, back_occupied) = binvox::read(&path).unwrap();
+        assert_eq!(back.dims, grid.dims);
+        assert!((back.voxel - grid.voxel).abs() < 1e-6 && back.origin.distance(grid.origin) < 1e-5);
+        assert!(back_occupied == occupied, "binvox round trip changed the voxels");
+    }
+    common::assert_clean(&ctx);
+}
+
+fn render(ctx: &Arc<Context>, scene: &Scene, dims: Option<UVec3>, gi: bool) -> (Vec<u8>, VoxelGrid) {
+    let options = RenderOptions { resolution: Some(64), dims, gi, ..Default::default() };
+    let r = Renderer::new(ctx, scene.clone(), options).unwrap();
+    r.render().unwrap();
+    (r.read_frame().unwrap().ldr, r.voxels.grid)
+}
+
+#[test]
+fn fitted_grid_renders_the_bounding_cubes_image() {
+    let ctx = common::context();
+    let mut scene = hall();
+    scene.set_size(Some(160), Some(120)).unwrap();
+    let (fitted, g) = render(&ctx, &scene, None, true);
+    let (cube, c) = render(&ctx, &scene, Some(UVec3::splat(64)), true);
+    assert_eq!(g.dims, UVec3::new(64, 16, 32));
+    // Same voxel size, and the fitted grid's voxels are the cube's (whole voxels apart).
+    assert!((g.voxel - c.voxel).abs() < 1e-6);
+    let shift = (g.origin - c.origin) / g.voxel;
+    assert!((shift - shift.round()).abs().max_element() < 1e-3, "lattices differ by {shift}");
+    let (f, _) = flip(&cube, &fitted, 160, 120);
+    println!("FLIP fitted vs cube: {f:.4} ({} vs {} voxels)", g.voxel_count(), c.voxel_count());
+    // The cube's extra voxels are empty; only cones wider than the fitted grid's coarsest texel
+    // (16 voxels) see a different level.
+    assert!(f <= 0.005, "fitted and cube images differ: FLIP {f}");
+    // The agreement means something: indirect light (weak under an open sky) changes the
+    // picture by several times the bound.
+    let (direct, _) = render(&ctx, &scene, None, false);
+    let (d, _) = flip(&fitted, &direct, 160, 120);
+    println!("FLIP fitted vs direct only: {d:.4}");
+    assert!(d >= 3.0 * 0.005, "GI barely changes the image (FLIP {d}): the comparison is empty");
+    common::assert_clean(&ctx);
+}
