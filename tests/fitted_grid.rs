@@ -115,3 +115,47 @@ fn fitted_grid_renders_the_bounding_cubes_image() {
     assert!(d >= 3.0 * 0.005, "GI barely changes the image (FLIP {d}): the comparison is empty");
     common::assert_clean(&ctx);
 }
+
+#[test]
+fn memory_report_adds_up_and_matches_what_is_allocated() {
+    let ctx = common::context();
+    let scene = hall();
+    let r = Renderer::new(&ctx, scene.clone(), RenderOptions { resolution: Some(64), ..Default::default() }).unwrap();
+    let m = r.memory();
+    assert_eq!(m.dims, [64, 16, 32]);
+    assert_eq!(m.bytes, m.rows.iter().map(|r| r.bytes).sum::<u64>());
+    assert_eq!(m.cube_bytes, m.rows.iter().map(|r| r.cube_bytes).sum::<u64>());
+    // Row by row against the renderer's images: same extent and levels, and the driver's
+    // allocation holds the texels with little more than alignment on top.
+    let images: Vec<_> = r.voxels.images().into_iter().chain(r.radiance.images()).collect();
+    assert_eq!(images.len() + 1, m.rows.len(), "one row per image, plus the occupied list");
+    for (row, img) in m.rows.iter().zip(&images) {
+        let e = img.desc.extent;
+        assert_eq!(
+            (row.name, row.extent, row.mips),
+            (img.name.as_str(), [e.width, e.height, e.depth], img.desc.mip_levels)
+        );
+        assert!(
+            img.bytes >= row.bytes && img.bytes <= row.bytes + row.bytes / 8 + (64 << 10),
+            "{}: {} vs {}",
+            row.name,
+            img.bytes,
+            row.bytes
+        );
+    }
+    // By hand: 32768 voxels; R32UI albedo 4 B each; the RGBA16F radiance chain 8 B at levels of
+    // 32768, 4096, 512, 64, 8 texels.
+    assert_eq!(m.rows[0].bytes, 4 * 32768);
+    assert_eq!(m.rows.iter().find(|r| r.name == "radiance volume").unwrap().bytes, 8 * (32768 + 4096 + 512 + 64 + 8));
+    // Over the cube, level 0 is 64³ and the chain three levels longer.
+    assert_eq!(m.rows[0].cube_bytes, 4 * 64 * 64 * 64);
+    println!("{m}");
+    assert!(m.cube_bytes >= 7 * m.bytes, "the hall fills an eighth of its cube: {} vs {}", m.bytes, m.cube_bytes);
+    // A cubic grid is its own cube.
+    let c = vct::render::memory::MemoryReport::for_grid(
+        &VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::splat(32)).unwrap(),
+        true,
+    );
+    assert_eq!(c.bytes, c.cube_bytes);
+    common::assert_clean(&ctx);
+}

@@ -31,6 +31,12 @@
 // Radiance injection looks for the lit voxel up to this many voxels before the shadow-map point
 // (towards the light): the slope-scaled depth bias pushes grazing points behind their surface.
 #define INJECT_SEARCH_VOXELS 3
+// Injection reads this many shadow-map texels per voxel width at the farthest lit point (every
+// k-th texel of a finer map), so its cost follows the grid, not the map (render::inject).
+// Measured (docs/benchmarks.md, "Injection cost"): voxels of walls the light grazes are hit by
+// few texels, so fewer than 8 changed Sponza's image (FLIP 0.025 at 4 against every texel);
+// 8 changed neither test scene and only strides maps finer than 16 texels a voxel.
+#define INJECT_TEXELS_PER_VOXEL 8.0
 
 // Voxelization.
 #define CAS_MAX_ITERATIONS 1024

@@ -1,5 +1,5 @@
 #version 460
-// Radiance injection (Freed 2018 §4.3, Algorithm 2): one thread per shadow-map texel
+// Radiance injection (Freed 2018 §4.3, Algorithm 2): one thread per (strided) shadow-map texel
 // reconstructs the lit point from its depth, finds its voxel and writes the light that voxel
 // reflects: albedo/pi * E * |n.l| (Lambert, n the voxel's averaged normal), plus emission.
 // The value is computed at the voxel centre, so every texel that hits a voxel writes the same
@@ -7,6 +7,7 @@
 // the voxel normal turned towards the light, which the anisotropic filter uses to keep a lit
 // face dark when seen from behind (a Lambertian face reflects into its own hemisphere only),
 // and around which the voxel-space bounce gathers.
+#define VCT_OWN_PUSH
 #include "frame.glsl"
 #include "light.glsl"
 #include "rgb9e5.glsl"
@@ -18,6 +19,9 @@ layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
 layout(set = 1, binding = 5, r32ui) uniform writeonly uimage3D lit_side;
+// One thread per `stride` x `stride` block of texels, reading its centre texel (render::inject:
+// the stride keeps INJECT_TEXELS_PER_VOXEL texels per voxel where the map has more).
+layout(push_constant) uniform Push { uint stride; } push;
 
 const float PI = 3.14159265358979;
 
@@ -26,7 +30,8 @@ vec4 unpack(uint p) {
 }
 
 void main() {
-    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    int stride = int(push.stride);
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy) * stride + stride / 2;
     ivec2 size = textureSize(shadow_depth, 0);
     if (any(greaterThanEqual(texel, size))) return;
     float depth = texelFetch(shadow_depth, texel, 0).r;

@@ -47,6 +47,14 @@ pub struct Row {
     pub triangles: usize,
     pub voxelizer: String,
     pub resolution: u32,
+    /// The fitted grid's voxels along x, y, z (absent in runs before fitted grids).
+    #[serde(default)]
+    pub dims: [u32; 3],
+    /// GPU memory of the voxel textures and radiance volumes, and over the bounding cube.
+    #[serde(default)]
+    pub memory_mib: f64,
+    #[serde(default)]
+    pub cube_memory_mib: f64,
     pub frames: u32,
     /// Median GPU ms per pass.
     pub passes: Vec<Timing>,
@@ -216,11 +224,15 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
                 let (flip, _) = metrics::flip(&ref_rgb, &frame.rgb8(), frame.width, frame.height);
                 let rmse = metrics::rmse(&reference, &frame.linear());
                 let acc = voxel_accuracy(scene, &renderer)?;
+                let memory = renderer.memory();
                 rows.push(Row {
                     scene: name.clone(),
                     triangles: scene.mesh.triangle_count(),
                     voxelizer: method.label(),
                     resolution: res,
+                    dims: memory.dims,
+                    memory_mib: memory.mib(),
+                    cube_memory_mib: memory.cube_mib(),
                     frames: opts.frames,
                     total_ms: get("total"),
                     total_min_ms: totals.iter().cloned().fold(f64::INFINITY, f64::min),
@@ -267,7 +279,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     })
 }
 
-pub const CSV_HEADER: &str = "scene,triangles,voxelizer,resolution,frames,voxelize_ms,shadow_ms,inject_ms,filter_ms,gbuffer_ms,shade_ms,tonemap_ms,total_ms,total_min_ms,total_max_ms,recall,precision,iou,flip,rmse";
+pub const CSV_HEADER: &str = "scene,triangles,voxelizer,resolution,frames,voxelize_ms,shadow_ms,inject_ms,filter_ms,gbuffer_ms,shade_ms,tonemap_ms,total_ms,total_min_ms,total_max_ms,recall,precision,iou,flip,rmse,dims,memory_mib,cube_memory_mib";
 
 /// Writes results.csv, results.json and the charts into `dir`.
 pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
@@ -277,7 +289,7 @@ pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
     for r in &results.rows {
         let p = |name: &str| r.passes.iter().find(|t| t.pass == name).map(|t| t.ms).unwrap_or(0.0);
         csv.push_str(&format!(
-            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.6}\n",
+            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.6},{},{:.1},{:.1}\n",
             r.scene,
             r.triangles,
             r.voxelizer,
@@ -297,7 +309,10 @@ pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
             r.precision,
             r.iou,
             r.flip,
-            r.rmse
+            r.rmse,
+            r.dims.map(|d| d.to_string()).join("x"),
+            r.memory_mib,
+            r.cube_memory_mib
         ));
     }
     let write = |name: &str, text: &str| -> Result<PathBuf> {

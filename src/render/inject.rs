@@ -2,6 +2,13 @@
 //! thread per voxel: opacity of every occupied voxel plus emission) and inject (one thread per
 //! shadow-map texel: the direct light each lit voxel reflects, and its lit side). The temporal
 //! blend into the radiance volume follows (`temporal.rs`).
+//!
+//! The shadow map is sized for direct shadows, not for the grid: a 2048² map over a 64³ grid
+//! puts some 30 texels across each voxel, and every one of them injects the same value (it is
+//! computed at the voxel centre). So injection reads every `stride`-th texel, the stride chosen
+//! to keep `texels_per_voxel` texels across a voxel at the farthest lit point: its cost then
+//! follows the grid's voxel size over the lit extent. How many it needs is set by the surfaces
+//! the light grazes, whose voxels few texels hit (config.h, INJECT_TEXELS_PER_VOXEL).
 
 use std::sync::Arc;
 
@@ -26,6 +33,17 @@ pub struct InjectPass {
     /// The grid's voxels along each axis.
     dims: [u32; 3],
     shadow_resolution: u32,
+    /// Injection reads every `stride`-th texel along each axis.
+    pub stride: u32,
+}
+
+/// The stride that leaves `texels_per_voxel` texels of `texel` world size across a `voxel`
+/// (1, every texel, where the map is no finer than that; 0 `texels_per_voxel`: every texel).
+pub fn injection_stride(texel: f32, voxel: f32, texels_per_voxel: f32) -> u32 {
+    if !(texels_per_voxel > 0.0 && texel > 0.0) {
+        return 1;
+    }
+    ((voxel / (texel * texels_per_voxel)).floor() as u32).max(1)
 }
 
 impl InjectPass {
@@ -36,6 +54,7 @@ impl InjectPass {
         voxels: &VoxelVolume,
         radiance: &RadianceVolume,
         occupied: &OccupiedVoxels,
+        stride: u32,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -83,7 +102,7 @@ impl InjectPass {
             "inject",
             Stage::new(c, shaders::GI_INJECT_COMP),
             &[scene.set.layout, inject_set.layout],
-            0,
+            4,
         )?;
         Ok(InjectPass {
             ctx: ctx.clone(),
@@ -94,6 +113,7 @@ impl InjectPass {
             _depth_sampler: depth_sampler,
             dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
+            stride,
         })
     }
 
@@ -118,7 +138,8 @@ impl InjectPass {
         occupied.record_args(cmd);
         if light {
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
-            let s = self.shadow_resolution;
+            self.inject.push(cmd, &self.stride);
+            let s = self.shadow_resolution.div_ceil(self.stride);
             gpu::dispatch(ctx, cmd, [s, s, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
             gpu::memory_barrier(ctx, cmd, w, r);
         }

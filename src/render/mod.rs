@@ -6,6 +6,7 @@ pub mod deferred;
 pub mod filter;
 pub mod frame;
 pub mod inject;
+pub mod memory;
 pub mod occupancy;
 pub mod prepass;
 pub mod radiance;
@@ -148,6 +149,8 @@ pub struct RenderOptions {
     pub tracing: Tracing,
     /// A volume around a moving point; `None`: fitted to the scene.
     pub follow: Option<Follow>,
+    /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
+    pub inject_texels: f32,
 }
 
 impl Default for RenderOptions {
@@ -161,6 +164,7 @@ impl Default for RenderOptions {
             gi: true,
             tracing: Tracing::default(),
             follow: None,
+            inject_texels: crate::config::INJECT_TEXELS_PER_VOXEL,
         }
     }
 }
@@ -210,7 +214,10 @@ impl Renderer {
         let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
         let grid = match (options.follow, options.dims) {
             (Some(_), Some(_)) => {
-                return Err(crate::Error::param("dims", "a volume following the camera is a cube: give --res, not --dims"))
+                return Err(crate::Error::param(
+                    "dims",
+                    "a volume following the camera is a cube: give --res, not --dims",
+                ))
             }
             (Some(f), None) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
             (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
@@ -224,7 +231,13 @@ impl Renderer {
         let aniso = gi.filter == Filter::Aniso;
         let radiance = RadianceVolume::new(ctx, &grid, gi.bounces > 1)?;
         let occupied = OccupiedVoxels::new(ctx, grid.voxel_count() as u64)?;
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied)?;
+        let texel = scene
+            .lights
+            .first()
+            .map(|l| shadow_texel_size(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
+            .unwrap_or(0.0);
+        let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied, stride)?;
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance)?;
         let filter = FilterPass::new(ctx, &radiance, &voxels)?;
         let bounce = (gi.bounces > 1)
@@ -247,11 +260,6 @@ impl Renderer {
                 grid.dims_label()
             ));
         }
-        let texel = scene
-            .lights
-            .first()
-            .map(|l| shadow_texel_size(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
-            .unwrap_or(0.0);
         if texel > 0.7 * grid.voxel {
             notes.push(format!(
                 "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m; lit voxels may be missed during injection (raise shadow.resolution)",
@@ -360,6 +368,11 @@ impl Renderer {
     pub fn frame_recorded(&self) {
         self.frame_index.set(self.frame_index.get() + 1);
         self.previous_origin.set(self.voxels.grid.origin);
+    }
+
+    /// Bytes of the voxel textures and radiance volumes at this grid, beside the bounding cube's.
+    pub fn memory(&self) -> memory::MemoryReport {
+        memory::MemoryReport::for_grid(&self.voxels.grid, self.radiance.bounced.is_some())
     }
 
     /// The GPU time of each pass of the last finished frame.

@@ -24,13 +24,18 @@ pub struct OccupiedVoxels {
     set: DescriptorSet,
 }
 
+/// Bytes of the list for a grid of `voxels` (room for every voxel).
+pub fn list_bytes(voxels: u64) -> u64 {
+    HEADER + 4 * voxels
+}
+
 impl OccupiedVoxels {
     pub fn new(ctx: &Arc<Context>, voxels: u64) -> Result<Self> {
         let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
         let list = Buffer::new(
             ctx,
             "occupied voxels",
-            HEADER + 4 * voxels,
+            list_bytes(voxels),
             storage | vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuOnly,
         )?;

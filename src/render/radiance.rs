@@ -37,6 +37,54 @@ pub struct RadianceVolume {
     pub levels: u32,
 }
 
+/// The radiance volumes' images over a grid, before allocation (the memory report reads them).
+#[derive(Clone, Copy, Debug)]
+pub struct RadianceDescs {
+    pub injected: ImageDesc,
+    pub radiance: ImageDesc,
+    pub aniso: ImageDesc,
+    pub lit_side: ImageDesc,
+    pub history: ImageDesc,
+    pub moment: ImageDesc,
+    pub bounced: Option<ImageDesc>,
+}
+
+impl RadianceDescs {
+    pub fn new(grid: &VoxelGrid, bounces: bool) -> Self {
+        let levels = grid.mip_levels();
+        let extent = extent_of(grid.dims);
+        let storage =
+            vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+        let sampled = storage | vk::ImageUsageFlags::SAMPLED;
+        let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
+        let chain = (grid.dims / 2).max(glam::UVec3::ONE);
+        let atlas = vk::Extent3D { width: chain.x, height: chain.y * crate::config::ANISO_BLOCKS, depth: chain.z };
+        RadianceDescs {
+            injected: d3(storage),
+            radiance: d3(sampled).mips(levels),
+            aniso: ImageDesc::d3_extent(RADIANCE_FORMAT, atlas, sampled).mips((levels - 1).max(1)),
+            lit_side: ImageDesc::d3_extent(crate::voxel::volume::VOXEL_FORMAT, extent, storage),
+            history: d3(sampled),
+            moment: d3(sampled).mips(levels),
+            bounced: bounces.then(|| d3(storage)),
+        }
+    }
+
+    /// Every image with its name, in the report's order.
+    pub fn named(&self) -> Vec<(&'static str, ImageDesc)> {
+        let mut v = vec![
+            ("injected radiance", self.injected),
+            ("radiance volume", self.radiance),
+            ("radiance directional chains", self.aniso),
+            ("lit side", self.lit_side),
+            ("radiance history", self.history),
+            ("radiance moment", self.moment),
+        ];
+        v.extend(self.bounced.map(|b| ("bounced radiance", b)));
+        v
+    }
+}
+
 impl RadianceVolume {
     /// Volumes over `grid`'s dims; `bounces`: also the target of the voxel-space bounce pass.
     pub fn new(ctx: &Arc<Context>, grid: &VoxelGrid, bounces: bool) -> Result<Self> {
@@ -49,43 +97,17 @@ impl RadianceVolume {
                 needed_by: "the radiance volume",
             });
         }
-        let levels = grid.mip_levels();
-        let extent = extent_of(grid.dims);
-        let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
-        let storage =
-            vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
-        let injected = Image::new(ctx, "injected radiance", d3(storage))?;
-        let radiance = Image::new(
-            ctx,
-            "radiance volume",
-            d3(storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
-        )?;
-        let chain = (grid.dims / 2).max(glam::UVec3::ONE);
-        let aniso = Image::new(
-            ctx,
-            "radiance directional chains",
-            ImageDesc::d3_extent(
-                RADIANCE_FORMAT,
-                vk::Extent3D { width: chain.x, height: chain.y * crate::config::ANISO_BLOCKS, depth: chain.z },
-                storage | vk::ImageUsageFlags::SAMPLED,
-            )
-            .mips((levels - 1).max(1)),
-        )?;
-        let lit_side =
-            Image::new(ctx, "lit side", ImageDesc::d3_extent(crate::voxel::volume::VOXEL_FORMAT, extent, storage))?;
-        let history = Image::new(
-            ctx,
-            "radiance history",
-            d3(storage | vk::ImageUsageFlags::SAMPLED),
-        )?;
-        let moment = Image::new(
-            ctx,
-            "radiance moment",
-            d3(storage | vk::ImageUsageFlags::SAMPLED).mips(levels),
-        )?;
-        let bounced = bounces
-            .then(|| Image::new(ctx, "bounced radiance", d3(storage)))
-            .transpose()?;
+        let d = RadianceDescs::new(grid, bounces);
+        let levels = d.radiance.mip_levels;
+        let mut images = d
+            .named()
+            .into_iter()
+            .map(|(name, desc)| Image::new(ctx, name, desc))
+            .collect::<Result<Vec<_>>>()?
+            .into_iter();
+        let mut next = || images.next().expect("one image per description");
+        let (injected, radiance, aniso, lit_side, history, moment) = (next(), next(), next(), next(), next(), next());
+        let bounced = bounces.then(next);
         // Start all in GENERAL and zero, so the first temporal blend reads defined history.
         ctx.submit_and_wait("clear radiance", |cmd| {
             for img in [&injected, &radiance, &lit_side, &history, &moment, &aniso].into_iter().chain(&bounced) {
@@ -105,7 +127,7 @@ impl RadianceVolume {
         })
     }
 
-    /// The volumes, for the memory report.
+    /// The volumes, in [`RadianceDescs::named`]'s order.
     pub fn images(&self) -> Vec<&Image> {
         let mut v = vec![&self.injected, &self.radiance, &self.aniso, &self.lit_side, &self.history, &self.moment];
         v.extend(&self.bounced);

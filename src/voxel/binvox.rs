@@ -78,7 +78,7 @@ pub fn read(path: &Path) -> Result<(VoxelGrid, Vec<bool>)> {
             Some("#binvox") => {}
             Some("dim") => {
                 let d = nums(&words[1..]).map_err(|_| bad("bad dim"))?;
-                if d.len() != 3 || d.iter().any(|&v| v < 1.0 || v > 4096.0 || v.fract() != 0.0) {
+                if d.len() != 3 || d.iter().any(|&v| !(1.0..=4096.0).contains(&v) || v.fract() != 0.0) {
                     return Err(bad("dim must be three whole numbers in 1..=4096"));
                 }
                 dim = Some([d[0] as usize, d[1] as usize, d[2] as usize]);

@@ -54,7 +54,8 @@ impl VoxelGrid {
         check_bounds(bounds)?;
         let size = bounds.size();
         let voxel = size.max_element().max(1e-6) / (longest - 2) as f32;
-        let need = |e: f32| (((e / voxel).ceil() as u32).saturating_add(2)).next_power_of_two().clamp(MIN_RESOLUTION, longest);
+        let need =
+            |e: f32| (((e / voxel).ceil() as u32).saturating_add(2)).next_power_of_two().clamp(MIN_RESOLUTION, longest);
         let dims = UVec3::new(need(size.x), need(size.y), need(size.z));
         Ok(Self::centred(bounds, voxel, dims))
     }

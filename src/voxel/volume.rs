@@ -28,6 +28,15 @@ pub fn voxel_write_scope() -> (vk::PipelineStageFlags2, vk::AccessFlags2) {
     )
 }
 
+/// The three voxel textures, in the order [`VoxelVolume::images`] gives them.
+pub const VOXEL_TEXTURES: [&str; 3] = ["voxel albedo", "voxel normal", "voxel emission"];
+
+/// Each voxel texture's image over `grid`.
+pub fn voxel_desc(grid: &VoxelGrid) -> ImageDesc {
+    let usage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
+    ImageDesc::d3_extent(VOXEL_FORMAT, extent_of(grid.dims), usage)
+}
+
 /// The image extent of a grid's dims.
 pub fn extent_of(dims: glam::UVec3) -> vk::Extent3D {
     vk::Extent3D { width: dims.x, height: dims.y, depth: dims.z }
@@ -58,15 +67,14 @@ impl VoxelVolume {
                 ),
             ));
         }
-        let usage =
-            vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
-        let desc = ImageDesc::d3_extent(VOXEL_FORMAT, extent_of(grid.dims), usage);
+        let desc = voxel_desc(&grid);
+        let [a, n, e] = VOXEL_TEXTURES;
         Ok(VoxelVolume {
             ctx: ctx.clone(),
             grid,
-            albedo: Image::new(ctx, "voxel albedo", desc)?,
-            normal: Image::new(ctx, "voxel normal", desc)?,
-            emission: Image::new(ctx, "voxel emission", desc)?,
+            albedo: Image::new(ctx, a, desc)?,
+            normal: Image::new(ctx, n, desc)?,
+            emission: Image::new(ctx, e, desc)?,
         })
     }
 

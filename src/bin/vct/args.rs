@@ -137,6 +137,9 @@ pub struct SceneArgs {
     /// With --follow: move the volume continuously instead of in whole voxels.
     #[arg(long)]
     pub no_snap: bool,
+    /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
+    #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
+    pub inject_texels: f32,
     /// Cone start offset along the normal, in voxels (0..=16; overrides the scene's gi.bias;
     /// too small lets a lit surface light itself).
     #[arg(long, value_name = "VOXELS", value_parser = cone_bias)]
@@ -233,6 +236,13 @@ pub struct ViewArgs {
 pub enum OnOff {
     On,
     Off,
+}
+
+fn inject_texels(s: &str) -> std::result::Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if (0.0..=64.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected a number of texels in 0..=64, got '{s}'")),
+    }
 }
 
 pub fn parse_dims(s: &str) -> std::result::Result<glam::UVec3, String> {

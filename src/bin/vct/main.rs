@@ -66,6 +66,7 @@ fn render(args: RenderArgs) -> Result<()> {
         gi: !args.no_gi,
         tracing,
         follow: args.scene.follow(),
+        inject_texels: args.scene.inject_texels,
     };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
@@ -81,6 +82,8 @@ fn render(args: RenderArgs) -> Result<()> {
     let timings = vct::gpu::timer::median(&runs);
     let frame = renderer.read_frame()?;
     print_timings(&timings);
+    let memory = renderer.memory();
+    println!("{memory}");
     if let Some(path) = &args.timings {
         let json = serde_json::json!({
             "device": ctx.info.name,
@@ -92,6 +95,7 @@ fn render(args: RenderArgs) -> Result<()> {
             "width": frame.width,
             "height": frame.height,
             "passes": timings,
+            "memory": memory,
         });
         std::fs::write(path, serde_json::to_string_pretty(&json)?)
             .with_context(|| format!("writing {}", path.display()))?;
@@ -119,6 +123,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     }
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
+    println!("{}", vct::render::memory::MemoryReport::for_grid(&g, scene.settings.gi.bounces > 1));
     let occupied = run.occupied();
     println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
     println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
@@ -151,6 +156,7 @@ fn view(args: ViewArgs) -> Result<()> {
             resolution: args.scene.method.res,
             dims: args.scene.method.dims,
             follow: args.scene.follow(),
+            inject_texels: args.scene.inject_texels,
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,

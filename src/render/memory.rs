@@ -1,0 +1,123 @@
+//! The memory report: bytes of every voxel texture and radiance volume a renderer allocates
+//! for its grid, beside what the same textures take over the bounding cube of the grid's
+//! longest axis (the layout before fitted grids). "Model no more than a scene needs": the
+//! report is how that is measured (docs/benchmarks.md, "Memory").
+
+use std::fmt;
+
+use super::radiance::RadianceDescs;
+use crate::gpu::ImageDesc;
+use crate::voxel::volume::{voxel_desc, VOXEL_TEXTURES};
+use crate::voxel::VoxelGrid;
+
+/// One texture or buffer.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct MemoryRow {
+    pub name: &'static str,
+    /// Texels along x, y, z at level 0 (a buffer: its length in bytes, 1, 1).
+    pub extent: [u32; 3],
+    pub mips: u32,
+    /// Bytes at this grid.
+    pub bytes: u64,
+    /// Bytes over the dense N³ cube (N the longest axis).
+    pub cube_bytes: u64,
+}
+
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct MemoryReport {
+    pub dims: [u32; 3],
+    pub rows: Vec<MemoryRow>,
+    pub bytes: u64,
+    pub cube_bytes: u64,
+}
+
+/// `desc` over the cube: each axis scaled from the grid's count to the longest, and as many
+/// more mip levels as the cube's chain is longer.
+fn cube_desc(desc: &ImageDesc, grid: &VoxelGrid) -> ImageDesc {
+    let n = grid.longest();
+    let e = desc.extent;
+    let mut c = *desc;
+    c.extent.width = e.width * (n / grid.dims.x);
+    c.extent.height = e.height * (n / grid.dims.y);
+    c.extent.depth = e.depth * (n / grid.dims.z);
+    if desc.mip_levels > 1 {
+        c.mip_levels += (n / grid.shortest()).trailing_zeros();
+    }
+    c
+}
+
+impl MemoryReport {
+    /// What a renderer allocates at `grid`, with or without the bounce target: the voxel
+    /// textures, the radiance volumes and the occupied-voxel list.
+    pub fn for_grid(grid: &VoxelGrid, bounces: bool) -> Self {
+        let voxel = voxel_desc(grid);
+        let mut images: Vec<(&'static str, ImageDesc)> = VOXEL_TEXTURES.iter().map(|&n| (n, voxel)).collect();
+        images.extend(RadianceDescs::new(grid, bounces).named());
+        let mut rows: Vec<MemoryRow> = images
+            .into_iter()
+            .map(|(name, d)| MemoryRow {
+                name,
+                extent: [d.extent.width, d.extent.height, d.extent.depth],
+                mips: d.mip_levels,
+                bytes: d.texel_bytes(),
+                cube_bytes: cube_desc(&d, grid).texel_bytes(),
+            })
+            .collect();
+        let list = |voxels: u64| super::occupancy::list_bytes(voxels);
+        let cube_voxels = (grid.longest() as u64).pow(3);
+        let occupied = list(grid.voxel_count() as u64);
+        rows.push(MemoryRow {
+            name: "occupied voxel list",
+            extent: [occupied as u32, 1, 1],
+            mips: 1,
+            bytes: occupied,
+            cube_bytes: list(cube_voxels),
+        });
+        MemoryReport {
+            dims: grid.dims.into(),
+            bytes: rows.iter().map(|r| r.bytes).sum(),
+            cube_bytes: rows.iter().map(|r| r.cube_bytes).sum(),
+            rows,
+        }
+    }
+
+    /// The total in MiB.
+    pub fn mib(&self) -> f64 {
+        self.bytes as f64 / 1048576.0
+    }
+
+    pub fn cube_mib(&self) -> f64 {
+        self.cube_bytes as f64 / 1048576.0
+    }
+}
+
+impl fmt::Display for MemoryReport {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        let [x, y, z] = self.dims;
+        let n = x.max(y).max(z);
+        let mib = |b: u64| b as f64 / 1048576.0;
+        writeln!(
+            f,
+            "{:<30} {:>15} {:>4} {:>10} {:>12}",
+            "GPU memory",
+            "extent",
+            "mips",
+            "MiB",
+            format!("MiB at {n}³")
+        )?;
+        for r in &self.rows {
+            let e = format!("{}×{}×{}", r.extent[0], r.extent[1], r.extent[2]);
+            writeln!(f, "{:<30} {:>15} {:>4} {:>10.1} {:>12.1}", r.name, e, r.mips, mib(r.bytes), mib(r.cube_bytes))?;
+        }
+        write!(
+            f,
+            "{:<30} {:>15} {:>4} {:>10.1} {:>12.1}   ({:.0}% of the cube)",
+            "total",
+            format!("{x}×{y}×{z}"),
+            "",
+            self.mib(),
+            self.cube_mib(),
+            100.0 * self.bytes as f64 / self.cube_bytes.max(1) as f64
+        )
+    }
+}
