@@ -130,11 +130,7 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     let images: Vec<_> = r.voxels.images().into_iter().chain(r.radiance.images()).collect();
     assert_eq!(images.len() + 1, m.rows.len(), "one row per image, plus the occupied list");
     for (row, img) in m.rows.iter().zip(&images) {
-        let e = img.desc.extent;
-        assert_eq!(
-            (row.name, row.extent, row.mips),
-            (img.name.as_str(), [e.width, e.height, e.depth], img.desc.mip_levels)
-        );
+        assert_eq!((row.name, row.extent, row.mips), (img.name.as_str(), img.desc.size(), img.desc.mip_levels));
         assert!(
             img.bytes >= row.bytes && img.bytes <= row.bytes + row.bytes / 8 + (64 << 10),
             "{}: {} vs {}",

@@ -47,6 +47,11 @@ impl ImageDesc {
         self
     }
 
+    /// Level 0's texels along x, y, z.
+    pub fn size(&self) -> [u32; 3] {
+        [self.extent.width, self.extent.height, self.extent.depth]
+    }
+
     /// Bytes of texel data over every mip level (what the image holds, before the driver's
     /// alignment and tiling).
     pub fn texel_bytes(&self) -> u64 {

@@ -87,10 +87,7 @@ impl FilterPass {
             offsets,
             sets,
             moment_set,
-            dims: {
-                let e = volume.radiance.desc.extent;
-                [e.width, e.height, e.depth]
-            },
+            dims: volume.radiance.desc.size(),
             levels: volume.levels,
         })
     }

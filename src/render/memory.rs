@@ -57,21 +57,20 @@ impl MemoryReport {
             .into_iter()
             .map(|(name, d)| MemoryRow {
                 name,
-                extent: [d.extent.width, d.extent.height, d.extent.depth],
+                extent: d.size(),
                 mips: d.mip_levels,
                 bytes: d.texel_bytes(),
                 cube_bytes: cube_desc(&d, grid).texel_bytes(),
             })
             .collect();
-        let list = |voxels: u64| super::occupancy::list_bytes(voxels);
-        let cube_voxels = (grid.longest() as u64).pow(3);
+        let list = super::occupancy::list_bytes;
         let occupied = list(grid.voxel_count() as u64);
         rows.push(MemoryRow {
             name: "occupied voxel list",
             extent: [occupied as u32, 1, 1],
             mips: 1,
             bytes: occupied,
-            cube_bytes: list(cube_voxels),
+            cube_bytes: list((grid.longest() as u64).pow(3)),
         });
         MemoryReport {
             dims: grid.dims.into(),

@@ -224,6 +224,12 @@ impl Renderer {
         };
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
+        // The whole set before any of it is allocated.
+        crate::voxel::volume::check_fits(
+            ctx,
+            &grid,
+            memory::MemoryReport::for_grid(&grid, scene.settings.gi.bounces > 1).bytes,
+        )?;
         let voxels = VoxelVolume::new(ctx, grid)?;
         let voxelizer = Voxelizer::new(ctx, &scene, &scene_gpu, &voxels, options.method)?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;

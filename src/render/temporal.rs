@@ -62,15 +62,7 @@ impl TemporalBlend {
             &[scene.set.layout, sets.layout],
             4,
         )?;
-        Ok(TemporalBlend {
-            ctx: ctx.clone(),
-            pipeline,
-            sets,
-            dims: {
-                let e = radiance.radiance.desc.extent;
-                [e.width, e.height, e.depth]
-            },
-        })
+        Ok(TemporalBlend { ctx: ctx.clone(), pipeline, sets, dims: radiance.radiance.desc.size() })
     }
 
     /// Keeps the previous frame's level 0 for the blend to reproject (before the first blend).

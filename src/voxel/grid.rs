@@ -120,16 +120,6 @@ impl VoxelGrid {
         format!("{}×{}×{}", self.dims.x, self.dims.y, self.dims.z)
     }
 
-    /// Bytes of GPU memory a renderer's volumes take at this grid, about: the voxel textures
-    /// (albedo, normal, emission: R32UI each), and the radiance volumes (RGBA16F): injection
-    /// target, history, mip-mapped radiance and moment (8/7 of a level each), the six
-    /// directional chains from level 1 (6/8 × 8/7), plus the R32UI lit side. For the check
-    /// before allocation; the renderer reports what it really allocated.
-    pub fn estimated_bytes(&self) -> u64 {
-        let n = self.voxel_count() as u64;
-        3 * 4 * n + 2 * 8 * n + 2 * 8 * n * 8 / 7 + 6 * 8 * n / 7 + 4 * n
-    }
-
     pub fn voxel_count(&self) -> usize {
         self.dims.x as usize * self.dims.y as usize * self.dims.z as usize
     }

@@ -52,22 +52,27 @@ fn largest_device_heap(ctx: &Context) -> u64 {
         .unwrap_or(0)
 }
 
+/// An error naming the grid when `need` bytes for it pass half the device's largest heap.
+pub fn check_fits(ctx: &Context, grid: &VoxelGrid, need: u64) -> Result<()> {
+    let heap = largest_device_heap(ctx);
+    if need > heap / 2 {
+        return Err(Error::param(
+            "res",
+            format!(
+                "a {} grid needs {} MiB of GPU memory; the device's largest heap has {} MiB",
+                grid.dims_label(),
+                need >> 20,
+                heap >> 20
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl VoxelVolume {
     pub fn new(ctx: &Arc<Context>, grid: VoxelGrid) -> Result<Self> {
-        let need = grid.estimated_bytes();
-        let heap = largest_device_heap(ctx);
-        if need > heap / 2 {
-            return Err(Error::param(
-                "res",
-                format!(
-                    "a {} grid needs {} MiB of GPU memory; the device's largest heap has {} MiB",
-                    grid.dims_label(),
-                    need >> 20,
-                    heap >> 20
-                ),
-            ));
-        }
         let desc = voxel_desc(&grid);
+        check_fits(ctx, &grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
         let [a, n, e] = VOXEL_TEXTURES;
         Ok(VoxelVolume {
             ctx: ctx.clone(),
