@@ -155,3 +155,19 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     assert_eq!(c.bytes, c.cube_bytes);
     common::assert_clean(&ctx);
 }
+
+#[test]
+fn the_heap_check_admits_what_allocates_and_names_what_cannot() {
+    // Lavapipe reports a 2 GiB heap: a 256³ Cornell box (1070 MiB) allocates, 512³ (8.4 GiB)
+    // cannot and is told before the allocator fails on one texture of it.
+    let ctx = common::context();
+    let scene = Scene::embedded_default().unwrap();
+    let big = RenderOptions { dims: Some(UVec3::splat(256)), ..Default::default() };
+    let r = Renderer::new(&ctx, scene.clone(), big).unwrap();
+    assert!(r.memory().mib() > 1000.0);
+    drop(r);
+    let huge = RenderOptions { dims: Some(UVec3::splat(512)), ..Default::default() };
+    let e = Renderer::new(&ctx, scene, huge).err().expect("a 512³ grid fitted the heap").to_string();
+    assert!(e.contains("512×512×512") && e.contains("largest heap"), "{e}");
+    common::assert_clean(&ctx);
+}

@@ -52,10 +52,11 @@ fn largest_device_heap(ctx: &Context) -> u64 {
         .unwrap_or(0)
 }
 
-/// An error naming the grid when `need` bytes for it pass half the device's largest heap.
+/// An error naming the grid when `need` bytes for it pass the device's largest heap (what
+/// cannot be allocated at all, told before the allocator fails on one texture of it).
 pub fn check_fits(ctx: &Context, grid: &VoxelGrid, need: u64) -> Result<()> {
     let heap = largest_device_heap(ctx);
-    if need > heap / 2 {
+    if need > heap {
         return Err(Error::param(
             "res",
             format!(
