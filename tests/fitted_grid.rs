@@ -128,7 +128,7 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     // Row by row against the renderer's images: same extent and levels, and the driver's
     // allocation holds the texels with little more than alignment on top.
     let images: Vec<_> = r.voxels.images().into_iter().chain(r.radiance.images()).collect();
-    assert_eq!(images.len() + 1, m.rows.len(), "one row per image, plus the occupied list");
+    assert_eq!(images.len() + 2, m.rows.len(), "one row per image, plus the occupied lists (voxels, mip texels)");
     for (row, img) in m.rows.iter().zip(&images) {
         assert_eq!((row.name, row.extent, row.mips), (img.name.as_str(), img.desc.size(), img.desc.mip_levels));
         assert!(
@@ -151,6 +151,7 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     let c = vct::render::memory::MemoryReport::for_grid(
         &VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::splat(32)).unwrap(),
         true,
+        true,
     );
     assert_eq!(c.bytes, c.cube_bytes);
     common::assert_clean(&ctx);
@@ -169,5 +170,43 @@ fn the_heap_check_admits_what_allocates_and_names_what_cannot() {
     let huge = RenderOptions { dims: Some(UVec3::splat(512)), ..Default::default() };
     let e = Renderer::new(&ctx, scene, huge).err().expect("a 512³ grid fitted the heap").to_string();
     assert!(e.contains("512×512×512") && e.contains("largest heap"), "{e}");
+    common::assert_clean(&ctx);
+}
+
+/// The frame's HDR pixels with `work`.
+fn hdr_with(ctx: &Arc<Context>, scene: &Scene, work: vct::render::Work, bounces: u32) -> Vec<f32> {
+    let mut scene = scene.clone();
+    scene.settings.gi.bounces = bounces;
+    let r = Renderer::new(ctx, scene, RenderOptions { resolution: Some(32), work, ..Default::default() }).unwrap();
+    r.render().unwrap();
+    r.read_frame().unwrap().hdr
+}
+
+#[test]
+fn mips_over_occupied_texels_equal_the_dense_filter() {
+    // The listed filter visits only the occupied texels of each level (lists built on the GPU)
+    // and clears the rest: its mips, and so the image, must be the dense filter's exactly. A
+    // filter that missed texels (a short list, a wrong dispatch size) loses indirect light.
+    let ctx = common::context();
+    let mut hall = hall();
+    hall.set_size(Some(96), Some(72)).unwrap();
+    let mut cornell = Scene::embedded_default().unwrap();
+    cornell.set_size(Some(96), Some(96)).unwrap();
+    for (name, scene, bounces) in [("cornell", &cornell, 1), ("cornell, 2 bounces", &cornell, 2), ("hall", &hall, 1)] {
+        let dense = hdr_with(&ctx, scene, vct::render::Work::Dense, bounces);
+        let listed = hdr_with(&ctx, scene, vct::render::Work::Occupied, bounces);
+        let diff = dense.iter().zip(&listed).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
+        assert!(diff <= 1e-6, "{name}: listed and dense filters differ by {diff}");
+        let gi_off = {
+            let mut s = scene.clone();
+            s.settings.gi.bounces = bounces;
+            let o = RenderOptions { resolution: Some(32), gi: false, ..Default::default() };
+            let r = Renderer::new(&ctx, s, o).unwrap();
+            r.render().unwrap();
+            r.read_frame().unwrap().hdr
+        };
+        let gi = listed.iter().zip(&gi_off).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
+        assert!(gi > 0.01, "{name}: the cones gather nothing ({gi}), the comparison is empty");
+    }
     common::assert_clean(&ctx);
 }

@@ -1,15 +1,21 @@
 #version 460
 // Radiance filtering (Freed 2018 §4.4): one dispatch per mip level, each voxel the average of
-// its 8 children in the level below (premultiplied radiance and opacity alike).
+// its 8 children in the level below (premultiplied radiance and opacity alike). With LISTED, one
+// invocation per occupied texel of the level (render::occupancy's parent lists); the rest of
+// the level is cleared, and an average of empty children is zero.
 #include "config.h"
+#define OCCUPIED_SET 0
+#define OCCUPIED_BINDING 2
+#include "occupied.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
+layout(constant_id = 0) const bool LISTED = false;
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, imageSize(dst)))) return;
+    ivec3 v;
+    if (!listed_or_dense(LISTED, imageSize(dst), v)) return;
     vec4 sum = vec4(0.0);
     for (int i = 0; i < 8; i++) {
         sum += imageLoad(src, 2 * v + ivec3(i & 1, (i >> 1) & 1, i >> 2));

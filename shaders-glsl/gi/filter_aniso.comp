@@ -10,11 +10,16 @@
 // only one (the radiance-level counterpart of the thesis' §6 anisotropic voxels).
 // The chains live in one atlas (config.h, ANISO_BLOCKS): each reads and writes its own block.
 #include "config.h"
+#define OCCUPIED_SET 0
+#define OCCUPIED_BINDING 3
+#include "occupied.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
 layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
+// One invocation per occupied texel of the level (as filter.comp).
+layout(constant_id = 0) const bool LISTED = false;
 // direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0;
 // src_y, dst_y: where the chain's block starts in src and dst (texels).
 layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint dst_y; } push;
@@ -31,10 +36,9 @@ vec4 child(ivec3 v, vec3 dir) {
 }
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
     // The level's extent: the atlas' blocks are ANISO_BLOCKS high.
-    ivec3 size = imageSize(dst) / ivec3(1, ANISO_BLOCKS, 1);
-    if (any(greaterThanEqual(v, size))) return;
+    ivec3 v;
+    if (!listed_or_dense(LISTED, imageSize(dst) / ivec3(1, ANISO_BLOCKS, 1), v)) return;
     int axis = int(push.direction / 2u);
     bool positive = (push.direction & 1u) == 0u;
     ivec3 step = ivec3(0);

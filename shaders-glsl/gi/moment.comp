@@ -5,18 +5,23 @@
 // and adds to the luminance only. The mip filter then averages it like the radiance.
 #include "config.h"
 #include "rgb9e5.glsl"
+#define OCCUPIED_SET 0
+#define OCCUPIED_BINDING 4
+#include "occupied.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D radiance;
 layout(set = 0, binding = 1, r32ui) uniform readonly uimage3D lit_side;
 layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D moment;
+// One invocation per occupied voxel (the rest of the level is cleared: empty voxels have none).
+layout(constant_id = 0) const bool LISTED = false;
 
 const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, imageSize(moment)))) return;
+    ivec3 v;
+    if (!listed_or_dense(LISTED, imageSize(moment), v)) return;
     float total = dot(imageLoad(radiance, v).rgb, LUMA);
     uint side = imageLoad(lit_side, v).r;
     vec3 m = vec3(0.0);

@@ -102,6 +102,22 @@ pub fn clear_to_general(ctx: &Context, cmd: vk::CommandBuffer, image: &Image, af
     };
 }
 
+/// Clears mips `mips` of `image` (in GENERAL, contents of the other mips kept), ordered after
+/// `after`; the caller orders the clear before what reads the image (scope::CLEAR_WRITE).
+pub fn clear_mips(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    image: &Image,
+    mips: std::ops::Range<u32>,
+    after: scope::Scope,
+) {
+    use vk::ImageLayout as L;
+    image_barrier_mips(ctx, cmd, image, mips.clone(), L::GENERAL, L::GENERAL, after, scope::CLEAR_WRITE);
+    let range =
+        vk::ImageSubresourceRange { base_mip_level: mips.start, level_count: mips.end - mips.start, ..image.range() };
+    unsafe { ctx.device.cmd_clear_color_image(cmd, image.raw, L::GENERAL, &vk::ClearColorValue::default(), &[range]) };
+}
+
 /// Copies mip `src_mip` of `src` into mip 0 of `dst` (same extent; both are in GENERAL before
 /// and after, and in the transfer layouts during the copy), ordered after anything before it
 /// and before compute shaders that sample `dst`.

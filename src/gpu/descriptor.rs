@@ -80,9 +80,14 @@ impl DescriptorSet {
     }
 
     pub fn write_buffer(&self, binding: u32, ty: vk::DescriptorType, buffer: &Buffer) {
+        self.write_buffer_at(0, binding, ty, buffer);
+    }
+
+    /// Writes `buffer` (whole) at `binding` of set `set` (of a [`Self::new_many`] set).
+    pub fn write_buffer_at(&self, set: usize, binding: u32, ty: vk::DescriptorType, buffer: &Buffer) {
         let info = [vk::DescriptorBufferInfo { buffer: buffer.raw, offset: 0, range: vk::WHOLE_SIZE }];
         let write = vk::WriteDescriptorSet::default()
-            .dst_set(self.raw)
+            .dst_set(self.sets[set])
             .dst_binding(binding)
             .descriptor_type(ty)
             .buffer_info(&info);

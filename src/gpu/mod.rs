@@ -14,7 +14,7 @@ pub mod timer;
 
 pub use buffer::Buffer;
 pub use commands::{
-    blit_to_present, clear_to_general, copy_level, dispatch, dispatch_indirect, fill_buffer, image_barrier,
+    blit_to_present, clear_mips, clear_to_general, copy_level, dispatch, dispatch_indirect, fill_buffer, image_barrier,
     image_barrier_mips, memory_barrier, read_image, render, render_multi, upload_levels, Attachments,
 };
 pub use context::{Context, ContextOptions, DeviceInfo};

@@ -3,11 +3,17 @@
 //! between levels; the radiance moment (level 0 from the radiance and each voxel's lit side,
 //! then the same average); optionally also six directional (anisotropic) chains (Crassin et
 //! al. 2011).
+//!
+//! With `listed` every level's dispatch runs over that level's occupied texels
+//! ([`ParentLists`], built each time from the occupied voxels), not over every texel: the
+//! levels are cleared first, and an empty texel's filtered value is zero, so the result is the
+//! dense filter's exactly, at a cost that follows the scene's occupied voxels.
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::occupancy::{OccupiedVoxels, ParentLists};
 use super::radiance::RadianceVolume;
 use crate::config::WORKGROUP_3D;
 use crate::error::Result;
@@ -30,51 +36,90 @@ pub struct FilterPass {
     /// Level 0's extent (voxels along each axis).
     dims: [u32; 3],
     levels: u32,
+    /// Over the occupied texels of each level (`None`: over every texel).
+    parents: Option<ParentLists>,
 }
+
+// A listed dispatch has one WORKGROUP_1D-sized group per WORKGROUP_1D listed texels, and the
+// filters' groups are WORKGROUP_3D³.
+const _: () = assert!(WORKGROUP_3D * WORKGROUP_3D * WORKGROUP_3D == crate::config::WORKGROUP_1D);
 
 fn storage_info(view: vk::ImageView) -> vk::DescriptorImageInfo {
     vk::DescriptorImageInfo { sampler: vk::Sampler::null(), image_view: view, image_layout: vk::ImageLayout::GENERAL }
 }
 
 impl FilterPass {
-    pub fn new(ctx: &Arc<Context>, volume: &RadianceVolume, voxels: &VoxelVolume) -> Result<Self> {
+    /// `listed`: filter over the occupied texels of each level (fed by `occupied`).
+    pub fn new(
+        ctx: &Arc<Context>,
+        volume: &RadianceVolume,
+        voxels: &VoxelVolume,
+        occupied: &OccupiedVoxels,
+        listed: bool,
+    ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
-        let st = vk::DescriptorType::STORAGE_IMAGE;
+        let list = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, c);
+        let (st, sb) = (vk::DescriptorType::STORAGE_IMAGE, vk::DescriptorType::STORAGE_BUFFER);
+        let dims = volume.radiance.desc.size();
+        let parents = listed.then(|| ParentLists::new(ctx, dims, volume.levels, occupied)).transpose()?;
+        // Level l's list (the occupied voxels' own list stands in when the dispatch is dense:
+        // the binding must hold a buffer).
+        let level_list = |level: u32| parents.as_ref().map_or(&occupied.list, |p| &p.levels[level as usize - 1].list);
+        let spec = [listed as u32];
         let per_chain = volume.levels.saturating_sub(1);
-        let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1)], 2 * per_chain)?;
+        let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1), list(2)], 2 * per_chain)?;
         for (k, chain) in [&volume.radiance, &volume.moment].into_iter().enumerate() {
             for level in 1..volume.levels {
                 let set = k * per_chain as usize + level as usize - 1;
                 sets.write_images_at(set, 0, st, &[storage_info(chain.mip_view(level - 1))]);
                 sets.write_images_at(set, 1, st, &[storage_info(chain.mip_view(level))]);
+                sets.write_buffer_at(set, 2, sb, level_list(level));
             }
         }
-        let pipeline = Pipeline::compute(ctx, "mip filter", Stage::new(c, shaders::GI_FILTER_COMP), &[sets.layout], 0)?;
+        let pipeline = Pipeline::compute(
+            ctx,
+            "mip filter",
+            Stage::new(c, shaders::GI_FILTER_COMP).spec(&spec),
+            &[sets.layout],
+            0,
+        )?;
 
-        let moment_set = DescriptorSet::new(ctx, "radiance moment", &(0..4).map(storage).collect::<Vec<_>>())?;
+        let moment_set =
+            DescriptorSet::new(ctx, "radiance moment", &[storage(0), storage(1), storage(2), storage(3), list(4)])?;
         moment_set.write_images(0, st, &[storage_info(volume.radiance.mip_view(0))]);
         moment_set.write_storage(1, volume.lit_side.view.raw);
         moment_set.write_storage(2, voxels.emission.view.raw);
         moment_set.write_images(3, st, &[storage_info(volume.moment.mip_view(0))]);
-        let moment_pipeline =
-            Pipeline::compute(ctx, "radiance moment", Stage::new(c, shaders::GI_MOMENT_COMP), &[moment_set.layout], 0)?;
+        moment_set.write_buffer(4, sb, &occupied.list);
+        let moment_pipeline = Pipeline::compute(
+            ctx,
+            "radiance moment",
+            Stage::new(c, shaders::GI_MOMENT_COMP).spec(&spec),
+            &[moment_set.layout],
+            0,
+        )?;
 
-        let aniso_sets =
-            DescriptorSet::new_many(ctx, "anisotropic mip filter", &[storage(0), storage(1), storage(2)], per_chain)?;
+        let aniso_sets = DescriptorSet::new_many(
+            ctx,
+            "anisotropic mip filter",
+            &[storage(0), storage(1), storage(2), list(3)],
+            per_chain,
+        )?;
         for level in 1..volume.levels {
             let set = level as usize - 1;
             let src = if level == 1 { volume.radiance.mip_view(0) } else { volume.aniso.mip_view(level - 2) };
             aniso_sets.write_images_at(set, 0, st, &[storage_info(src)]);
             aniso_sets.write_images_at(set, 1, st, &[storage_info(volume.aniso.mip_view(level - 1))]);
             aniso_sets.write_images_at(set, 2, st, &[storage_info(volume.lit_side.view.raw)]);
+            aniso_sets.write_buffer_at(set, 3, sb, level_list(level));
         }
         // Where each chain's block starts at each chain mip (src of level l is mip l - 2).
         let offsets = (0..6).map(|d| (0..per_chain).map(|m| volume.chain_offset(d, m)).collect()).collect();
         let aniso_pipeline = Pipeline::compute(
             ctx,
             "anisotropic mip filter",
-            Stage::new(c, shaders::GI_FILTER_ANISO_COMP),
+            Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&spec),
             &[aniso_sets.layout],
             16,
         )?;
@@ -87,31 +132,59 @@ impl FilterPass {
             offsets,
             sets,
             moment_set,
-            dims: volume.radiance.desc.size(),
+            dims,
             levels: volume.levels,
+            parents,
         })
     }
 
-    fn dispatch_level(&self, cmd: vk::CommandBuffer, level: u32) {
-        gpu::dispatch(&self.ctx, cmd, self.dims.map(|n| (n >> level).max(1)), [WORKGROUP_3D; 3]);
+    /// Whether the filters run over the occupied texels of each level.
+    pub fn is_listed(&self) -> bool {
+        self.parents.is_some()
+    }
+
+    /// One invocation per texel of `level`, or per occupied texel (level 0: `occupied`'s).
+    fn dispatch_level(&self, cmd: vk::CommandBuffer, level: u32, occupied: &OccupiedVoxels) {
+        match &self.parents {
+            Some(_) if level == 0 => occupied.dispatch(cmd),
+            Some(p) => p.levels[level as usize - 1].dispatch(cmd),
+            None => gpu::dispatch(&self.ctx, cmd, self.dims.map(|n| (n >> level).max(1)), [WORKGROUP_3D; 3]),
+        }
     }
 
     /// Builds the isotropic chain, the moment (when `moment`) and, when `anisotropic`, the six
-    /// directional chains.
-    pub fn record(&self, cmd: vk::CommandBuffer, anisotropic: bool, moment: bool) {
+    /// directional chains; `occupied` is this frame's list of occupied voxels (its dispatch
+    /// arguments written).
+    pub fn record(
+        &self,
+        cmd: vk::CommandBuffer,
+        volume: &RadianceVolume,
+        occupied: &OccupiedVoxels,
+        anisotropic: bool,
+        moment: bool,
+    ) {
         let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         let per_chain = self.levels as usize - 1;
+        if let Some(p) = &self.parents {
+            // What the listed dispatches leave unwritten must be empty.
+            let ctx = &self.ctx;
+            gpu::clear_mips(ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
+            gpu::clear_mips(ctx, cmd, &volume.moment, 0..self.levels, scope::ANY);
+            gpu::clear_mips(ctx, cmd, &volume.aniso, 0..volume.aniso.desc.mip_levels, scope::ANY);
+            p.record(cmd, occupied);
+            gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
+        }
         if moment {
             self.moment_pipeline.bind(cmd, &[self.moment_set.raw]);
-            self.dispatch_level(cmd, 0);
+            self.dispatch_level(cmd, 0, occupied);
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
         for level in 1..self.levels {
             self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
-            self.dispatch_level(cmd, level);
+            self.dispatch_level(cmd, level, occupied);
             if moment {
                 self.pipeline.bind(cmd, &[self.sets.sets[per_chain + level as usize - 1]]);
-                self.dispatch_level(cmd, level);
+                self.dispatch_level(cmd, level, occupied);
             }
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
@@ -122,7 +195,7 @@ impl FilterPass {
                     let src = if level == 1 { 0 } else { self.offsets[d][level as usize - 2] };
                     let dst = self.offsets[d][level as usize - 1];
                     self.aniso_pipeline.push(cmd, &[d as u32, (level == 1) as u32, src, dst]);
-                    self.dispatch_level(cmd, level);
+                    self.dispatch_level(cmd, level, occupied);
                 }
                 gpu::memory_barrier(&self.ctx, cmd, w, r);
             }

@@ -47,9 +47,10 @@ fn cube_desc(desc: &ImageDesc, grid: &VoxelGrid) -> ImageDesc {
 }
 
 impl MemoryReport {
-    /// What a renderer allocates at `grid`, with or without the bounce target: the voxel
-    /// textures, the radiance volumes and the occupied-voxel list.
-    pub fn for_grid(grid: &VoxelGrid, bounces: bool) -> Self {
+    /// What a renderer allocates at `grid`, with or without the bounce target and the mip
+    /// levels' lists of occupied texels (`listed`): the voxel textures, the radiance volumes and
+    /// the occupied-voxel lists.
+    pub fn for_grid(grid: &VoxelGrid, bounces: bool, listed: bool) -> Self {
         let voxel = voxel_desc(grid);
         let mut images: Vec<(&'static str, ImageDesc)> = VOXEL_TEXTURES.iter().map(|&n| (n, voxel)).collect();
         images.extend(RadianceDescs::new(grid, bounces).named());
@@ -65,6 +66,17 @@ impl MemoryReport {
             .collect();
         let list = super::occupancy::list_bytes;
         let occupied = list(grid.voxel_count() as u64);
+        if listed {
+            let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels());
+            let n = grid.longest();
+            rows.push(MemoryRow {
+                name: "occupied texel lists (mips)",
+                extent: [parents as u32, 1, 1],
+                mips: 1,
+                bytes: parents,
+                cube_bytes: super::occupancy::parent_list_bytes([n; 3], 32 - n.leading_zeros()),
+            });
+        }
         rows.push(MemoryRow {
             name: "occupied voxel list",
             extent: [occupied as u32, 1, 1],

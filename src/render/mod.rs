@@ -151,6 +151,18 @@ pub struct RenderOptions {
     pub follow: Option<Follow>,
     /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
     pub inject_texels: f32,
+    /// Which texels the passes over the volume visit.
+    pub work: Work,
+}
+
+/// Which texels the mip filters visit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Work {
+    /// The occupied texels of each level, from lists built on the GPU, dispatched indirectly.
+    #[default]
+    Occupied,
+    /// Every texel of each level (for comparison).
+    Dense,
 }
 
 impl Default for RenderOptions {
@@ -165,6 +177,7 @@ impl Default for RenderOptions {
             tracing: Tracing::default(),
             follow: None,
             inject_texels: crate::config::INJECT_TEXELS_PER_VOXEL,
+            work: Work::default(),
         }
     }
 }
@@ -224,11 +237,14 @@ impl Renderer {
         };
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
+        // With temporal blending, light stays a while in voxels no longer occupied (a moving
+        // volume): only the dense filter carries it into the mips.
+        let listed = options.work == Work::Occupied && scene.settings.gi.temporal >= 1.0;
         // The whole set before any of it is allocated.
         crate::voxel::volume::check_fits(
             ctx,
             &grid,
-            memory::MemoryReport::for_grid(&grid, scene.settings.gi.bounces > 1).bytes,
+            memory::MemoryReport::for_grid(&grid, scene.settings.gi.bounces > 1, listed).bytes,
         )?;
         let voxels = VoxelVolume::new(ctx, grid)?;
         let voxelizer = Voxelizer::new(ctx, &scene, &scene_gpu, &voxels, options.method)?;
@@ -245,7 +261,7 @@ impl Renderer {
         let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied, stride)?;
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance)?;
-        let filter = FilterPass::new(ctx, &radiance, &voxels)?;
+        let filter = FilterPass::new(ctx, &radiance, &voxels, &occupied, listed)?;
         let bounce = (gi.bounces > 1)
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, &occupied, aniso))
             .transpose()?;
@@ -339,13 +355,14 @@ impl Renderer {
                 }
                 self.temporal.record(cmd, scene, Source::Injected, temporal && bounces == 1);
             });
-            t.span(cmd, "filter", || self.filter.record(cmd, aniso, moment));
+            let filter = || self.filter.record(cmd, &self.radiance, &self.occupied, aniso, moment);
+            t.span(cmd, "filter", filter);
             if let Some(b) = &self.bounce {
                 t.span(cmd, "bounces", || {
                     for k in 1..bounces {
                         b.record(cmd, scene, &self.radiance, &self.occupied);
                         self.temporal.record(cmd, scene, Source::Bounced, temporal && k + 1 == bounces);
-                        self.filter.record(cmd, aniso, moment);
+                        filter();
                     }
                 });
             }
@@ -378,7 +395,7 @@ impl Renderer {
 
     /// Bytes of the voxel textures and radiance volumes at this grid, beside the bounding cube's.
     pub fn memory(&self) -> memory::MemoryReport {
-        memory::MemoryReport::for_grid(&self.voxels.grid, self.radiance.bounced.is_some())
+        memory::MemoryReport::for_grid(&self.voxels.grid, self.radiance.bounced.is_some(), self.filter.is_listed())
     }
 
     /// The GPU time of each pass of the last finished frame.

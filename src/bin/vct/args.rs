@@ -140,6 +140,9 @@ pub struct SceneArgs {
     /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
+    /// Mip filtering over the occupied texels of each level, or over every texel (dense).
+    #[arg(long, value_enum, default_value = "occupied")]
+    pub work: WorkArg,
     /// Cone start offset along the normal, in voxels (0..=16; overrides the scene's gi.bias;
     /// too small lets a lit surface light itself).
     #[arg(long, value_name = "VOXELS", value_parser = cone_bias)]
@@ -262,6 +265,21 @@ pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = (parse(w)?, parse(h)?);
     vct::scene::check_image_size(w, h).map_err(|e| e.to_string())?;
     Ok((w, h))
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum WorkArg {
+    Occupied,
+    Dense,
+}
+
+impl WorkArg {
+    pub fn work(self) -> vct::render::Work {
+        match self {
+            WorkArg::Occupied => vct::render::Work::Occupied,
+            WorkArg::Dense => vct::render::Work::Dense,
+        }
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

@@ -67,6 +67,7 @@ fn render(args: RenderArgs) -> Result<()> {
         tracing,
         follow: args.scene.follow(),
         inject_texels: args.scene.inject_texels,
+        work: args.scene.work.work(),
     };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
@@ -123,7 +124,14 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     }
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
-    println!("{}", vct::render::memory::MemoryReport::for_grid(&g, scene.settings.gi.bounces > 1));
+    println!(
+        "{}",
+        vct::render::memory::MemoryReport::for_grid(
+            &g,
+            scene.settings.gi.bounces > 1,
+            scene.settings.gi.temporal >= 1.0
+        )
+    );
     let occupied = run.occupied();
     println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
     println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
@@ -157,6 +165,7 @@ fn view(args: ViewArgs) -> Result<()> {
             dims: args.scene.method.dims,
             follow: args.scene.follow(),
             inject_texels: args.scene.inject_texels,
+            work: args.scene.work.work(),
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,
