@@ -14,11 +14,15 @@ layout(set = 1, binding = 0, rgba16f) uniform readonly image3D injected;
 layout(set = 1, binding = 1, rgba16f) uniform writeonly image3D radiance;
 layout(set = 1, binding = 2) uniform sampler3D history;
 layout(push_constant) uniform Push { uint use_history; } push;
+#define OCCUPIED_BINDING 3
+#include "occupied.glsl"
+// Over the occupied voxels only (render::temporal): level 0 is cleared first.
+layout(constant_id = 0) const bool LISTED = false;
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
+    ivec3 v;
     ivec3 size = imageSize(radiance);
-    if (any(greaterThanEqual(v, size))) return;
+    if (!listed_or_dense(LISTED, size, v)) return;
     vec4 now = imageLoad(injected, v);
     float factor = frame.voxel_grid.w > 0.5 || push.use_history == 0u ? 1.0 : frame.voxel_grid.z;
     vec3 previous = (vec3(v) + 0.5 + frame.history_shift.xyz) / vec3(size);

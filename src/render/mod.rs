@@ -237,9 +237,9 @@ impl Renderer {
         };
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
-        // With temporal blending, light stays a while in voxels no longer occupied (a moving
-        // volume): only the dense filter carries it into the mips.
-        let listed = options.work == Work::Occupied && scene.settings.gi.temporal >= 1.0;
+        // Light lives in occupied voxels only: a voxel the temporal blend would leave lit after
+        // its geometry left it (a trail behind a moving volume) stays dark.
+        let listed = options.work == Work::Occupied;
         // The whole set before any of it is allocated.
         crate::voxel::volume::check_fits(
             ctx,
@@ -260,7 +260,7 @@ impl Renderer {
             .unwrap_or(0.0);
         let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied, stride)?;
-        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance)?;
+        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &occupied, listed)?;
         let filter = FilterPass::new(ctx, &radiance, &voxels, &occupied, listed)?;
         let bounce = (gi.bounces > 1)
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, &occupied, aniso))
@@ -353,7 +353,14 @@ impl Renderer {
                 if temporal {
                     self.temporal.record_history(cmd, &self.radiance);
                 }
-                self.temporal.record(cmd, scene, Source::Injected, temporal && bounces == 1);
+                self.temporal.record(
+                    cmd,
+                    scene,
+                    &self.radiance,
+                    &self.occupied,
+                    Source::Injected,
+                    temporal && bounces == 1,
+                );
             });
             let filter = || self.filter.record(cmd, &self.radiance, &self.occupied, aniso, moment);
             t.span(cmd, "filter", filter);
@@ -361,7 +368,8 @@ impl Renderer {
                 t.span(cmd, "bounces", || {
                     for k in 1..bounces {
                         b.record(cmd, scene, &self.radiance, &self.occupied);
-                        self.temporal.record(cmd, scene, Source::Bounced, temporal && k + 1 == bounces);
+                        let last = temporal && k + 1 == bounces;
+                        self.temporal.record(cmd, scene, &self.radiance, &self.occupied, Source::Bounced, last);
                         filter();
                     }
                 });

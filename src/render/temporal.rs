@@ -2,11 +2,16 @@
 //! mix(previous, new, factor), the previous frame's level 0 reprojected when the volume moves
 //! (`gi/blend.comp`). The new radiance is the injected light, or with several bounces each
 //! bounce's result in turn; only a frame's last one blends with the history.
+//!
+//! Over the occupied voxels (`listed`), the blend runs on the occupied-voxel list after clearing
+//! level 0: only occupied voxels keep light, with or without a history (a voxel its geometry
+//! left no longer trails light behind a moving volume).
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::occupancy::OccupiedVoxels;
 use super::radiance::RadianceVolume;
 use crate::config::WORKGROUP_3D;
 use crate::error::Result;
@@ -27,17 +32,31 @@ pub struct TemporalBlend {
     sets: DescriptorSet,
     /// Level 0's extent.
     dims: [u32; 3],
+    /// Over the occupied voxels.
+    listed: bool,
 }
 
 impl TemporalBlend {
-    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, radiance: &RadianceVolume) -> Result<Self> {
+    /// `listed`: over `occupied`'s voxels.
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &SceneGpu,
+        radiance: &RadianceVolume,
+        occupied: &OccupiedVoxels,
+        listed: bool,
+    ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
         let sources: Vec<&Image> = std::iter::once(&radiance.injected).chain(radiance.bounced.as_ref()).collect();
         let sets = DescriptorSet::new_many(
             ctx,
             "temporal blend",
-            &[storage(0), storage(1), Binding::new(2, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c)],
+            &[
+                storage(0),
+                storage(1),
+                Binding::new(2, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
+                Binding::new(3, vk::DescriptorType::STORAGE_BUFFER, c),
+            ],
             sources.len() as u32,
         )?;
         let info = |view| vk::DescriptorImageInfo {
@@ -54,15 +73,16 @@ impl TemporalBlend {
                 vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
                 &[vk::DescriptorImageInfo { sampler: radiance.sampler.raw, ..info(radiance.history.view.raw) }],
             );
+            sets.write_buffer_at(i, 3, vk::DescriptorType::STORAGE_BUFFER, &occupied.list);
         }
         let pipeline = Pipeline::compute(
             ctx,
             "temporal blend",
-            Stage::new(c, shaders::GI_BLEND_COMP),
+            Stage::new(c, shaders::GI_BLEND_COMP).spec(&[listed as u32]),
             &[scene.set.layout, sets.layout],
             4,
         )?;
-        Ok(TemporalBlend { ctx: ctx.clone(), pipeline, sets, dims: radiance.radiance.desc.size() })
+        Ok(TemporalBlend { ctx: ctx.clone(), pipeline, sets, dims: radiance.radiance.desc.size(), listed })
     }
 
     /// Keeps the previous frame's level 0 for the blend to reproject (before the first blend).
@@ -70,15 +90,32 @@ impl TemporalBlend {
         gpu::copy_level(&self.ctx, cmd, &radiance.radiance, 0, &radiance.history);
     }
 
-    /// Writes level 0 from `source`, mixed with the history when `history`.
-    pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, source: Source, history: bool) {
+    /// Writes level 0 from `source`, mixed with the history when `history` (of `radiance`, over
+    /// `occupied`'s voxels when listed).
+    pub fn record(
+        &self,
+        cmd: vk::CommandBuffer,
+        scene: &SceneGpu,
+        radiance: &RadianceVolume,
+        occupied: &OccupiedVoxels,
+        source: Source,
+        history: bool,
+    ) {
         let set = match source {
             Source::Injected => self.sets.sets[0],
             Source::Bounced => self.sets.sets[1],
         };
+        if self.listed {
+            gpu::clear_mips(&self.ctx, cmd, &radiance.radiance, 0..1, scope::ANY);
+            gpu::memory_barrier(&self.ctx, cmd, scope::CLEAR_WRITE, scope::COMPUTE_RW);
+        }
         self.pipeline.bind(cmd, &[scene.set.raw, set]);
         self.pipeline.push(cmd, &(history as u32));
-        gpu::dispatch(&self.ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
+        if self.listed {
+            occupied.dispatch(cmd);
+        } else {
+            gpu::dispatch(&self.ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
+        }
         gpu::memory_barrier(&self.ctx, cmd, scope::COMPUTE_WRITE, scope::COMPUTE_RW);
     }
 }

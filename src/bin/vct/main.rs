@@ -124,14 +124,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     }
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
-    println!(
-        "{}",
-        vct::render::memory::MemoryReport::for_grid(
-            &g,
-            scene.settings.gi.bounces > 1,
-            scene.settings.gi.temporal >= 1.0
-        )
-    );
+    println!("{}", vct::render::memory::MemoryReport::for_grid(&g, scene.settings.gi.bounces > 1, true));
     let occupied = run.occupied();
     println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
     println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
