@@ -21,6 +21,10 @@ layout(set = 2, binding = 1, r32ui) uniform coherent volatile uimage3D voxel_alb
 layout(set = 2, binding = 2, r32ui) uniform coherent volatile uimage3D voxel_normal;
 // Emitted radiance, RGB9E5 (atomic max: exact for a voxel with one emissive material).
 layout(set = 2, binding = 3, r32ui) uniform coherent volatile uimage3D voxel_emission;
+// The list of occupied voxels: a voxel's first write appends it.
+#define OCCUPIED_SET 2
+#define OCCUPIED_BINDING 4
+#include "occupied.glsl"
 
 vec3 to_voxel_space(vec3 world) {
     return (world - voxel.origin_size.xyz) / voxel.origin_size.w;
@@ -42,14 +46,15 @@ uint voxel_cas(uint which, ivec3 coord, uint expected, uint desired) {
 }
 
 // Folds `value` (rgb in [0,1]) into the running average stored at `coord` of texture `which`
-// (0 albedo, 1 normal).
-void atomic_average(uint which, ivec3 coord, vec3 value) {
+// (0 albedo, 1 normal). Returns whether this was the voxel's first write (the swap from empty:
+// exactly one writer of a voxel sees it).
+bool atomic_average(uint which, ivec3 coord, vec3 value) {
     vec4 add = vec4(value * 255.0, 1.0);
     uint desired = pack_rgba8(add);
     uint expected = 0u;
     for (int i = 0; i < CAS_MAX_ITERATIONS; i++) {
         uint found = voxel_cas(which, coord, expected, desired);
-        if (found == expected) break;
+        if (found == expected) return i == 0;
         expected = found;
         vec4 avg = unpack_rgba8(found);
         float n = avg.w;
@@ -57,6 +62,7 @@ void atomic_average(uint which, ivec3 coord, vec3 value) {
         vec3 sum = avg.rgb * n + add.rgb;
         desired = pack_rgba8(vec4(sum / (n + 1.0), n + 1.0));
     }
+    return false;
 }
 
 #include "rgb9e5.glsl"
@@ -64,7 +70,7 @@ void atomic_average(uint which, ivec3 coord, vec3 value) {
 // Writes one voxel sample (albedo, unit normal, emission) if `coord` lies inside the grid.
 void write_voxel(ivec3 coord, vec3 albedo, vec3 normal, vec3 emission) {
     if (!in_grid(coord)) return;
-    atomic_average(0u, coord, clamp(albedo, 0.0, 1.0));
+    if (atomic_average(0u, coord, clamp(albedo, 0.0, 1.0))) occupied.voxels[atomicAdd(occupied.count, 1u)] = pack_voxel(coord);
     atomic_average(1u, coord, normalize(normal) * 0.5 + 0.5);
     if (max(emission.r, max(emission.g, emission.b)) > 0.0) imageAtomicMax(voxel_emission, coord, encode_rgb9e5(emission));
 }

@@ -15,7 +15,7 @@ layout(set = 1, binding = 1, rgba16f) uniform writeonly image3D radiance;
 layout(set = 1, binding = 2) uniform sampler3D history;
 layout(push_constant) uniform Push { uint use_history; } push;
 #define OCCUPIED_BINDING 3
-#include "occupied.glsl"
+#include "listed.glsl"
 // Over the occupied voxels only (render::temporal): level 0 is cleared first.
 layout(constant_id = 0) const bool LISTED = false;
 

@@ -12,7 +12,7 @@
 #include "config.h"
 #define OCCUPIED_SET 0
 #define OCCUPIED_BINDING 3
-#include "occupied.glsl"
+#include "listed.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;

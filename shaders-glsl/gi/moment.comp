@@ -7,7 +7,7 @@
 #include "rgb9e5.glsl"
 #define OCCUPIED_SET 0
 #define OCCUPIED_BINDING 4
-#include "occupied.glsl"
+#include "listed.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D radiance;

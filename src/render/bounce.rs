@@ -7,11 +7,11 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::occupancy::OccupiedVoxels;
 use super::radiance::RadianceVolume;
 use crate::error::{Error, Result};
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
 use crate::scene::gpu::SceneGpu;
+use crate::voxel::occupied::OccupiedVoxels;
 use crate::voxel::VoxelVolume;
 
 pub struct BouncePass {

@@ -13,11 +13,12 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::occupancy::{OccupiedVoxels, ParentLists};
+use super::occupancy::ParentLists;
 use super::radiance::RadianceVolume;
 use crate::config::WORKGROUP_3D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Stage};
+use crate::voxel::occupied::OccupiedVoxels;
 use crate::voxel::VoxelVolume;
 
 pub struct FilterPass {

@@ -14,13 +14,13 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::occupancy::OccupiedVoxels;
 use super::radiance::RadianceVolume;
 use super::shadow::ShadowPass;
 use crate::config::{WORKGROUP_2D, WORKGROUP_3D};
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
 use crate::scene::gpu::SceneGpu;
+use crate::voxel::occupied::OccupiedVoxels;
 use crate::voxel::VoxelVolume;
 
 pub struct InjectPass {
@@ -35,6 +35,8 @@ pub struct InjectPass {
     shadow_resolution: u32,
     /// Injection reads every `stride`-th texel along each axis.
     pub stride: u32,
+    /// The resolve runs over the occupied voxels (the target cleared first).
+    listed: bool,
 }
 
 /// The stride that leaves `texels_per_voxel` texels of `texel` world size across a `voxel`
@@ -53,8 +55,8 @@ impl InjectPass {
         shadow: &ShadowPass,
         voxels: &VoxelVolume,
         radiance: &RadianceVolume,
-        occupied: &OccupiedVoxels,
         stride: u32,
+        listed: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -66,9 +68,14 @@ impl InjectPass {
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
-        resolve_set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &occupied.list);
-        let resolve =
-            Pipeline::compute(ctx, "resolve", Stage::new(c, shaders::GI_RESOLVE_COMP), &[resolve_set.layout], 0)?;
+        resolve_set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &voxels.occupied.list);
+        let resolve = Pipeline::compute(
+            ctx,
+            "resolve",
+            Stage::new(c, shaders::GI_RESOLVE_COMP).spec(&[listed as u32]),
+            &[resolve_set.layout],
+            0,
+        )?;
 
         let depth_sampler = Sampler::new(
             ctx,
@@ -114,11 +121,12 @@ impl InjectPass {
             dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
             stride,
+            listed,
         })
     }
 
     /// Fills `radiance.injected` (emission and opacity, plus the shadowed light's reflection
-    /// when `light`), `radiance.lit_side` and the list of occupied voxels.
+    /// when `light`) and `radiance.lit_side`, over `occupied` (the voxelizers' list) when listed.
     pub fn record(
         &self,
         cmd: vk::CommandBuffer,
@@ -129,13 +137,19 @@ impl InjectPass {
     ) {
         let ctx = &self.ctx;
         let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
-        occupied.record_reset(cmd);
-        self.resolve.bind(cmd, &[self.resolve_set.raw]);
-        gpu::dispatch(ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
         gpu::clear_to_general(ctx, cmd, &radiance.lit_side, scope::ANY);
+        if self.listed {
+            gpu::clear_to_general(ctx, cmd, &radiance.injected, scope::ANY);
+            gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
+        }
+        self.resolve.bind(cmd, &[self.resolve_set.raw]);
+        if self.listed {
+            occupied.dispatch(cmd);
+        } else {
+            gpu::dispatch(ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
+        }
         gpu::memory_barrier(ctx, cmd, w, r);
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
-        occupied.record_args(cmd);
         if light {
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
             self.inject.push(cmd, &self.stride);

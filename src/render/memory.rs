@@ -64,7 +64,7 @@ impl MemoryReport {
                 cube_bytes: cube_desc(&d, grid).texel_bytes(),
             })
             .collect();
-        let list = super::occupancy::list_bytes;
+        let list = crate::voxel::occupied::list_bytes;
         let occupied = list(grid.voxel_count() as u64);
         if listed {
             let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels());

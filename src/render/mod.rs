@@ -36,7 +36,6 @@ use filter::FilterPass;
 use frame::FrameState;
 pub use frame::View;
 use inject::InjectPass;
-use occupancy::OccupiedVoxels;
 use prepass::DepthPrepass;
 use radiance::RadianceVolume;
 use shade::ShadePass;
@@ -192,7 +191,6 @@ pub struct Renderer {
     shadow: ShadowPass,
     pub radiance: RadianceVolume,
     inject: InjectPass,
-    occupied: OccupiedVoxels,
     temporal: TemporalBlend,
     filter: FilterPass,
     bounce: Option<BouncePass>,
@@ -252,18 +250,18 @@ impl Renderer {
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
         let radiance = RadianceVolume::new(ctx, &grid, gi.bounces > 1)?;
-        let occupied = OccupiedVoxels::new(ctx, grid.voxel_count() as u64)?;
+        let occupied = &voxels.occupied;
         let texel = scene
             .lights
             .first()
             .map(|l| shadow_texel_size(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
             .unwrap_or(0.0);
         let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, &occupied, stride)?;
-        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &occupied, listed)?;
-        let filter = FilterPass::new(ctx, &radiance, &voxels, &occupied, listed)?;
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, stride, listed)?;
+        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, occupied, listed)?;
+        let filter = FilterPass::new(ctx, &radiance, &voxels, occupied, listed)?;
         let bounce = (gi.bounces > 1)
-            .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, &occupied, aniso))
+            .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, occupied, aniso))
             .transpose()?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
         let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, aniso)?;
@@ -299,7 +297,6 @@ impl Renderer {
             shadow,
             radiance,
             inject,
-            occupied,
             temporal,
             filter,
             bounce,
@@ -349,7 +346,7 @@ impl Renderer {
             let (temporal, bounces, aniso) = (gi.temporal < 1.0, gi.bounces.max(1), gi.filter == Filter::Aniso);
             let moment = gi.facing;
             t.span(cmd, "inject", || {
-                self.inject.record(cmd, scene, &self.radiance, &self.occupied, light);
+                self.inject.record(cmd, scene, &self.radiance, &self.voxels.occupied, light);
                 if temporal {
                     self.temporal.record_history(cmd, &self.radiance);
                 }
@@ -357,19 +354,19 @@ impl Renderer {
                     cmd,
                     scene,
                     &self.radiance,
-                    &self.occupied,
+                    &self.voxels.occupied,
                     Source::Injected,
                     temporal && bounces == 1,
                 );
             });
-            let filter = || self.filter.record(cmd, &self.radiance, &self.occupied, aniso, moment);
+            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment);
             t.span(cmd, "filter", filter);
             if let Some(b) = &self.bounce {
                 t.span(cmd, "bounces", || {
                     for k in 1..bounces {
-                        b.record(cmd, scene, &self.radiance, &self.occupied);
+                        b.record(cmd, scene, &self.radiance, &self.voxels.occupied);
                         let last = temporal && k + 1 == bounces;
-                        self.temporal.record(cmd, scene, &self.radiance, &self.occupied, Source::Bounced, last);
+                        self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Bounced, last);
                         filter();
                     }
                 });

@@ -11,12 +11,12 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::occupancy::OccupiedVoxels;
 use super::radiance::RadianceVolume;
 use crate::config::WORKGROUP_3D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Image, Pipeline, Stage};
 use crate::scene::gpu::SceneGpu;
+use crate::voxel::occupied::OccupiedVoxels;
 
 /// Which image a blend reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -5,6 +5,7 @@
 pub mod binvox;
 pub mod grid;
 pub mod headless;
+pub mod occupied;
 pub mod raster;
 pub mod subdivide;
 pub mod tess;
@@ -152,6 +153,7 @@ pub(crate) fn voxel_set(
             Binding::new(1, vk::DescriptorType::STORAGE_IMAGE, g),
             Binding::new(2, vk::DescriptorType::STORAGE_IMAGE, g),
             Binding::new(3, vk::DescriptorType::STORAGE_IMAGE, g),
+            Binding::new(4, vk::DescriptorType::STORAGE_BUFFER, g),
         ],
     )?;
     let buffer =
@@ -160,6 +162,7 @@ pub(crate) fn voxel_set(
     set.write_storage(1, volume.albedo.view.raw);
     set.write_storage(2, volume.normal.view.raw);
     set.write_storage(3, volume.emission.view.raw);
+    set.write_buffer(4, vk::DescriptorType::STORAGE_BUFFER, &volume.occupied.list);
     Ok((set, ParamsUbo { params: *params, buffer }))
 }
 

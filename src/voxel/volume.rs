@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
+use super::occupied::OccupiedVoxels;
 use super::VoxelGrid;
 use crate::error::{Error, Result};
 use crate::gpu::{self, scope, Context, Image, ImageDesc};
@@ -18,6 +19,8 @@ pub struct VoxelVolume {
     pub albedo: Image,
     pub normal: Image,
     pub emission: Image,
+    /// Every voxel the voxelizers wrote, each once (appended on its first write).
+    pub occupied: OccupiedVoxels,
 }
 
 /// Stages and accesses of the voxelizers' writes, for barriers.
@@ -81,19 +84,24 @@ impl VoxelVolume {
             albedo: Image::new(ctx, a, desc)?,
             normal: Image::new(ctx, n, desc)?,
             emission: Image::new(ctx, e, desc)?,
+            occupied: OccupiedVoxels::new(ctx, grid.voxel_count() as u64)?,
         })
     }
 
-    /// Clears both textures to zero (empty) and makes them ready for the voxelizers' atomics.
+    /// Clears the textures to zero (empty) and the list of occupied voxels, and makes them ready
+    /// for the voxelizers' atomics.
     pub fn record_clear(&self, cmd: vk::CommandBuffer) {
         let ctx = &self.ctx;
         for img in [&self.albedo, &self.normal, &self.emission] {
             gpu::clear_to_general(ctx, cmd, img, scope::ANY);
         }
+        self.occupied.record_reset(cmd);
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, voxel_write_scope());
+        gpu::memory_barrier(ctx, cmd, scope::TRANSFER_WRITE, voxel_write_scope());
     }
 
-    /// Makes the voxelizers' writes visible to the compute and transfer work that follows.
+    /// Makes the voxelizers' writes visible to the compute and transfer work that follows, and
+    /// writes the occupied list's dispatch arguments.
     pub fn record_finish(&self, cmd: vk::CommandBuffer) {
         let after = (
             vk::PipelineStageFlags2::COMPUTE_SHADER
@@ -102,6 +110,7 @@ impl VoxelVolume {
             vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::TRANSFER_READ,
         );
         gpu::memory_barrier(&self.ctx, cmd, voxel_write_scope(), after);
+        self.occupied.record_args(cmd);
     }
 
     /// Reads back the packed albedo texture (RGBA8 per voxel; alpha = sample count, 0 = empty).
