@@ -7,6 +7,7 @@
 pub mod accuracy;
 pub mod charts;
 pub mod hostile;
+pub mod occupancy;
 pub mod stability;
 
 use std::collections::hash_map::DefaultHasher;

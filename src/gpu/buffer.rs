@@ -30,7 +30,6 @@ impl Buffer {
         let raw = unsafe { ctx.device.create_buffer(&info, None) }.vk("vkCreateBuffer")?;
         let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
         let allocation = ctx
-            .allocator()
             .allocate(&AllocationCreateDesc {
                 name,
                 requirements,
@@ -85,7 +84,7 @@ impl Buffer {
 impl Drop for Buffer {
     fn drop(&mut self) {
         if let Some(a) = self.allocation.take() {
-            let _ = self.ctx.allocator().free(a);
+            self.ctx.free(a);
         }
         unsafe { self.ctx.device.destroy_buffer(self.raw, None) };
     }

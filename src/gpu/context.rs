@@ -149,6 +149,9 @@ pub struct Context {
     pub queue_family: u32,
     command_pool: Mutex<vk::CommandPool>,
     allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// Bytes the live allocations asked for (the allocator's own total adds the alignment
+    /// padding of where each landed, which moves with fragmentation).
+    allocated: std::sync::atomic::AtomicU64,
     pub validation: Arc<ValidationCounter>,
 }
 
@@ -320,6 +323,7 @@ impl Context {
             queue_family,
             command_pool: Mutex::new(command_pool),
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            allocated: Default::default(),
             validation,
         }))
     }
@@ -336,9 +340,25 @@ impl Context {
         self.allocator.lock().expect("allocator mutex poisoned")
     }
 
-    /// Bytes of GPU memory currently allocated through gpu-allocator.
+    /// Allocates GPU memory through gpu-allocator, counting it.
+    pub(crate) fn allocate(
+        &self,
+        desc: &gpu_allocator::vulkan::AllocationCreateDesc,
+    ) -> gpu_allocator::Result<gpu_allocator::vulkan::Allocation> {
+        let a = self.allocator().allocate(desc)?;
+        self.allocated.fetch_add(a.size(), std::sync::atomic::Ordering::Relaxed);
+        Ok(a)
+    }
+
+    /// Frees what [`Self::allocate`] gave.
+    pub(crate) fn free(&self, a: gpu_allocator::vulkan::Allocation) {
+        self.allocated.fetch_sub(a.size(), std::sync::atomic::Ordering::Relaxed);
+        let _ = self.allocator().free(a);
+    }
+
+    /// Bytes of GPU memory the live buffers and images hold (the sizes they asked for).
     pub fn allocated_bytes(&self) -> u64 {
-        self.allocator().generate_report().total_allocated_bytes
+        self.allocated.load(std::sync::atomic::Ordering::Relaxed)
     }
 
     /// Gives a Vulkan object a debug name (visible in validation messages and capture tools).

@@ -155,7 +155,6 @@ impl Image {
         let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
         let allocation = ctx
-            .allocator()
             .allocate(&AllocationCreateDesc {
                 name,
                 requirements,
@@ -223,7 +222,7 @@ impl Drop for Image {
     fn drop(&mut self) {
         self.mip_views.clear();
         if let Some(a) = self.allocation.take() {
-            let _ = self.ctx.allocator().free(a);
+            self.ctx.free(a);
         }
         unsafe { self.ctx.device.destroy_image(self.raw, None) };
     }

@@ -72,6 +72,10 @@ pub struct BenchArgs {
     /// light leaking, temporal flicker, self-illumination) instead of the speed/accuracy sweep.
     #[arg(long)]
     pub stability: bool,
+    /// Cost against occupancy: inject + filter time on one grid (--res, default 128) for scenes
+    /// that occupy more and more of it, over the occupied texels and over every texel.
+    #[arg(long)]
+    pub occupancy: bool,
     /// Output folder; default bench/<date>-<device>.
     #[arg(long)]
     pub out: Option<PathBuf>,

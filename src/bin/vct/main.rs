@@ -296,6 +296,28 @@ fn bench(args: BenchArgs) -> Result<()> {
     if args.accuracy {
         return accuracy(&ctx, &args, scenes, &out);
     }
+    if args.occupancy {
+        let n = args.res.as_ref().and_then(|r| r.first().copied()).unwrap_or(if args.quick { 64 } else { 128 });
+        let frames = args.frames.unwrap_or(if args.quick { 2 } else { 5 });
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        let g = vct::bench::occupancy::run(&ctx, n, frames, &|m| bar.set_message(m.to_string()))?;
+        bar.finish_and_clear();
+        std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+        println!("{}", g.title);
+        for s in &g.series {
+            let pts: Vec<String> = s.points.iter().map(|(x, y)| format!("{x:.0} voxels: {y:.1} ms")).collect();
+            println!("  {:<40} {}", s.label, pts.join("  "));
+        }
+        for f in vct::bench::charts::draw_regime(&out, &g)? {
+            println!("wrote {}", f.display());
+        }
+        let json = out.join("occupancy.json");
+        std::fs::write(&json, serde_json::to_string_pretty(&g)?)
+            .with_context(|| format!("writing {}", json.display()))?;
+        println!("wrote {}", json.display());
+        return check_validation(&ctx);
+    }
     if args.stability {
         let bar = indicatif::ProgressBar::new_spinner();
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
