@@ -146,11 +146,11 @@ impl FilterPass {
 
     /// One invocation per texel of `level`, or per occupied texel (level 0: `occupied`'s).
     fn dispatch_level(&self, cmd: vk::CommandBuffer, level: u32, occupied: &OccupiedVoxels) {
-        match &self.parents {
-            Some(_) if level == 0 => occupied.dispatch(cmd),
-            Some(p) => p.levels[level as usize - 1].dispatch(cmd),
-            None => gpu::dispatch(&self.ctx, cmd, self.dims.map(|n| (n >> level).max(1)), [WORKGROUP_3D; 3]),
-        }
+        let list = match &self.parents {
+            Some(p) if level > 0 => &p.levels[level as usize - 1],
+            _ => occupied,
+        };
+        list.dispatch_or_dense(cmd, self.parents.is_some(), self.dims.map(|n| (n >> level).max(1)));
     }
 
     /// Builds the isotropic chain, the moment (when `moment`) and, when `anisotropic`, the six

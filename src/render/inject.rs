@@ -16,7 +16,7 @@ use ash::vk;
 
 use super::radiance::RadianceVolume;
 use super::shadow::ShadowPass;
-use crate::config::{WORKGROUP_2D, WORKGROUP_3D};
+use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
 use crate::scene::gpu::SceneGpu;
@@ -143,11 +143,7 @@ impl InjectPass {
             gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         }
         self.resolve.bind(cmd, &[self.resolve_set.raw]);
-        if self.listed {
-            occupied.dispatch(cmd);
-        } else {
-            gpu::dispatch(ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
-        }
+        occupied.dispatch_or_dense(cmd, self.listed, self.dims);
         gpu::memory_barrier(ctx, cmd, w, r);
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         if light {

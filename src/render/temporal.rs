@@ -12,7 +12,6 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::radiance::RadianceVolume;
-use crate::config::WORKGROUP_3D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Image, Pipeline, Stage};
 use crate::scene::gpu::SceneGpu;
@@ -111,11 +110,7 @@ impl TemporalBlend {
         }
         self.pipeline.bind(cmd, &[scene.set.raw, set]);
         self.pipeline.push(cmd, &(history as u32));
-        if self.listed {
-            occupied.dispatch(cmd);
-        } else {
-            gpu::dispatch(&self.ctx, cmd, self.dims, [WORKGROUP_3D; 3]);
-        }
+        occupied.dispatch_or_dense(cmd, self.listed, self.dims);
         gpu::memory_barrier(&self.ctx, cmd, scope::COMPUTE_WRITE, scope::COMPUTE_RW);
     }
 }

@@ -84,4 +84,15 @@ impl OccupiedVoxels {
     pub fn dispatch(&self, cmd: vk::CommandBuffer) {
         gpu::dispatch_indirect(&self.ctx, cmd, &self.args);
     }
+
+    /// Dispatches the bound pipeline (a `common/listed.glsl` pass) over the listed voxels, or
+    /// when not `listed` over every voxel of a grid of `dims`.
+    pub fn dispatch_or_dense(&self, cmd: vk::CommandBuffer, listed: bool, dims: [u32; 3]) {
+        if listed {
+            self.dispatch(cmd);
+        } else {
+            let g = crate::config::WORKGROUP_3D;
+            gpu::dispatch(&self.ctx, cmd, dims, [g; 3]);
+        }
+    }
 }
