@@ -1,4 +1,4 @@
-//! Issue "Benchmarks": `vct bench --quick` (the CI smoke run) writes CSV, JSON and the four
+//! Issue "Benchmarks": `vct bench --quick` (the CI smoke run) writes CSV, JSON and the six
 //! charts, with the expected columns and one row per configuration.
 
 #[test]
@@ -16,8 +16,9 @@ fn quick_bench_writes_csv_json_and_charts() {
     let mut lines = csv.lines();
     assert_eq!(lines.next().unwrap(), vct::bench::CSV_HEADER);
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Cornell × {32, 64} × {tess, raster-msaa, raster-none (, raster-hw where offered)}.
-    assert!(rows.len() == 6 || rows.len() == 8, "{} rows:\n{csv}", rows.len());
+    // Cornell × {32, 64} × {tess, raster-msaa, raster-none, raster-conservative (, raster-hw
+    // where offered)} with sparse storage, and raster-conservative with dense storage.
+    assert!(rows.len() == 10 || rows.len() == 12, "{} rows:\n{csv}", rows.len());
     let cols = vct::bench::CSV_HEADER.split(',').count();
     for r in &rows {
         assert_eq!(r.len(), cols);
@@ -31,12 +32,32 @@ fn quick_bench_writes_csv_json_and_charts() {
     for (label, n) in [("tess", 32), ("raster-msaa", 64), ("raster-none", 64)] {
         assert!(rows.iter().any(|r| r[2] == label && r[3] == n.to_string()), "no {label} {n} row");
     }
+    // Dense storage beside sparse: more memory, the same image against the reference.
+    let col = |name: &str| vct::bench::CSV_HEADER.split(',').position(|c| c == name).unwrap();
+    for n in ["32", "64"] {
+        let find = |storage: &str| {
+            rows.iter()
+                .find(|r| r[2] == "raster-conservative" && r[3] == n && r[col("storage")] == storage)
+                .unwrap_or_else(|| panic!("no {storage} row at {n}"))
+        };
+        let (s, d) = (find("sparse"), find("dense"));
+        let f = |r: &Vec<&str>, c: &str| -> f64 { r[col(c)].parse().unwrap() };
+        assert!(f(s, "memory_mib") < f(d, "memory_mib"), "{s:?} {d:?}");
+        assert!((f(s, "flip") - f(d, "flip")).abs() <= 0.005, "{s:?} {d:?}");
+    }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(json["rows"].as_array().unwrap().len(), rows.len());
     assert!(json["triangle_sweep"].as_array().unwrap().len() >= 6);
     assert!(!json["device"].as_str().unwrap().is_empty());
-    for chart in ["voxelize_time", "passes_stacked", "speed_vs_accuracy", "cost_vs_triangles"] {
+    for chart in [
+        "voxelize_time",
+        "passes_stacked",
+        "speed_vs_accuracy",
+        "cost_vs_triangles",
+        "storage_memory_vs_flip",
+        "storage_time_vs_flip",
+    ] {
         for ext in ["png", "svg"] {
             let p = out.join(format!("{chart}.{ext}"));
             assert!(std::fs::metadata(&p).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", p.display());

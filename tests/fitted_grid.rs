@@ -14,24 +14,9 @@ use vct::reference::coverage::RefGrid;
 use vct::reference::metrics::flip;
 use vct::render::{RenderOptions, Renderer};
 use vct::scene::Scene;
+use vct::voxel::bricks::Storage;
 use vct::voxel::headless::voxelize_in;
 use vct::voxel::{binvox, Coverage, VoxelGrid, VoxelizeMethod};
-
-/// A long, low hall open to the sky: a floor 8 m along x and 2 m deep, a back wall 1.2 m high
-/// and three boxes, one slanted. Lit by the default sun, which reaches the floor and the boxes'
-/// tops and bounces light onto the wall.
-fn hall() -> Scene {
-    let mut tris = common::box_triangles(Vec3::new(-4.0, -0.1, -1.0), Vec3::new(4.0, 0.0, 1.0));
-    let wall = common::box_triangles(Vec3::new(-4.0, 0.0, -1.0), Vec3::new(4.0, 1.2, -0.9));
-    tris.extend(wall.into_iter().map(|(t, _)| (t, 1)));
-    for (x, h) in [(-2.5f32, 0.6f32), (0.0, 0.9), (2.5, 0.4)] {
-        tris.extend(common::box_triangles(Vec3::new(x - 0.3, 0.0, -0.4), Vec3::new(x + 0.3, h, 0.2)));
-    }
-    // A slanted panel: its voxels cross layers within a pixel column.
-    let p = [Vec3::new(-1.2, 0.05, 0.5), Vec3::new(-0.4, 0.7, 0.3), Vec3::new(-0.3, 0.1, 0.8)];
-    tris.push((p, 2));
-    Scene::from_triangles(&tris, &[Vec3::splat(0.75), Vec3::new(0.8, 0.3, 0.2), Vec3::new(0.2, 0.7, 0.3)])
-}
 
 fn triangles(scene: &Scene) -> Vec<[Vec3; 3]> {
     (0..scene.mesh.triangle_count()).map(|t| scene.mesh.triangle(t)).collect()
@@ -39,7 +24,7 @@ fn triangles(scene: &Scene) -> Vec<[Vec3; 3]> {
 
 #[test]
 fn fitted_grid_follows_the_scene_shape_and_holds_its_bounds() {
-    let scene = hall();
+    let scene = common::hall();
     let g = VoxelGrid::fit(&scene.mesh.bounds, 64).unwrap();
     // 8 m over 62 voxels: 0.129 m; 1.3 m needs 13 voxels, 2 m 18 (with padding).
     assert_eq!(g.dims, UVec3::new(64, 16, 32), "{}", g.dims_label());
@@ -59,7 +44,7 @@ fn fitted_grid_follows_the_scene_shape_and_holds_its_bounds() {
 #[test]
 fn non_cubic_grid_is_exact_against_coverage_and_round_trips_binvox() {
     let ctx = common::context();
-    let scene = hall();
+    let scene = common::hall();
     let tris = triangles(&scene);
     for (dims, method) in [
         (None, VoxelizeMethod::raster(Coverage::Conservative)),
@@ -93,7 +78,7 @@ fn render(ctx: &Arc<Context>, scene: &Scene, dims: Option<UVec3>, gi: bool) -> (
 #[test]
 fn fitted_grid_renders_the_bounding_cubes_image() {
     let ctx = common::context();
-    let mut scene = hall();
+    let mut scene = common::hall();
     scene.set_size(Some(160), Some(120)).unwrap();
     let (fitted, g) = render(&ctx, &scene, None, true);
     let (cube, c) = render(&ctx, &scene, Some(UVec3::splat(64)), true);
@@ -119,26 +104,28 @@ fn fitted_grid_renders_the_bounding_cubes_image() {
 #[test]
 fn memory_report_adds_up_and_matches_what_is_allocated() {
     let ctx = common::context();
-    let scene = hall();
-    let r = Renderer::new(&ctx, scene.clone(), RenderOptions { resolution: Some(64), ..Default::default() }).unwrap();
+    let scene = common::hall();
+    let sparse =
+        Renderer::new(&ctx, scene.clone(), RenderOptions { resolution: Some(64), ..Default::default() }).unwrap();
+    sparse.render().unwrap();
+    let s = sparse.memory();
+    check_rows(&sparse, &s);
+    // The pool's slots (the census' bricks and the empty one) at 4 B a voxel texel.
+    let slots = sparse.voxels.bricks.capacity as u64;
+    assert_eq!(slots, sparse.voxels.bricks.usage().needed as u64 + 1);
+    let voxel = s.rows.iter().find(|r| r.name == "voxel albedo").unwrap();
+    let [x, y, z] = voxel.extent;
+    assert!((x * y * z) as u64 >= slots * 8 && voxel.bytes == 4 * (x * y * z) as u64);
+    let table = s.rows.iter().find(|r| r.name == "brick page table").unwrap();
+    assert_eq!(table.bytes, 32 + 4 * (32 * 8 * 16));
+    drop(sparse);
+    let dense = RenderOptions { resolution: Some(64), storage: Storage::Dense, ..Default::default() };
+    let r = Renderer::new(&ctx, scene.clone(), dense).unwrap();
     let m = r.memory();
+    check_rows(&r, &m);
+    assert!(s.bytes < m.bytes, "sparse {} B, dense {} B", s.bytes, m.bytes);
+    assert_eq!(s.cube_bytes, m.cube_bytes, "the cube column is the dense cube either way");
     assert_eq!(m.dims, [64, 16, 32]);
-    assert_eq!(m.bytes, m.rows.iter().map(|r| r.bytes).sum::<u64>());
-    assert_eq!(m.cube_bytes, m.rows.iter().map(|r| r.cube_bytes).sum::<u64>());
-    // Row by row against the renderer's images: same extent and levels, and the driver's
-    // allocation holds the texels with little more than alignment on top.
-    let images: Vec<_> = r.voxels.images().into_iter().chain(r.radiance.images()).collect();
-    assert_eq!(images.len() + 2, m.rows.len(), "one row per image, plus the occupied lists (voxels, mip texels)");
-    for (row, img) in m.rows.iter().zip(&images) {
-        assert_eq!((row.name, row.extent, row.mips), (img.name.as_str(), img.desc.size(), img.desc.mip_levels));
-        assert!(
-            img.bytes >= row.bytes && img.bytes <= row.bytes + row.bytes / 8 + (64 << 10),
-            "{}: {} vs {}",
-            row.name,
-            img.bytes,
-            row.bytes
-        );
-    }
     // By hand: 32768 voxels; R32UI albedo 4 B each; the RGBA16F radiance chain 8 B at levels of
     // 32768, 4096, 512, 64, 8 texels.
     assert_eq!(m.rows[0].bytes, 4 * 32768);
@@ -150,24 +137,43 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     // A cubic grid is its own cube.
     let c = vct::render::memory::MemoryReport::for_grid(
         &VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::splat(32)).unwrap(),
-        true,
-        true,
+        &vct::render::memory::Layout { bounces: true, listed: true, pool: None, temporal: true },
     );
     assert_eq!(c.bytes, c.cube_bytes);
     common::assert_clean(&ctx);
 }
 
+/// The report adds up, and row by row matches the renderer's images: same extent and levels,
+/// and the driver's allocation holds the texels with little more than alignment on top.
+fn check_rows(r: &Renderer, m: &vct::render::memory::MemoryReport) {
+    assert_eq!(m.bytes, m.rows.iter().map(|r| r.bytes).sum::<u64>());
+    assert_eq!(m.cube_bytes, m.rows.iter().map(|r| r.cube_bytes).sum::<u64>());
+    let images: Vec<_> = r.voxels.images().into_iter().chain(r.radiance.images()).collect();
+    let table = r.voxels.bricks.sparse() as usize;
+    assert_eq!(images.len() + table + 2, m.rows.len(), "a row per image, the page table, the occupied lists");
+    for (row, img) in m.rows.iter().zip(&images) {
+        assert_eq!((row.name, row.extent, row.mips), (img.name.as_str(), img.desc.size(), img.desc.mip_levels));
+        assert!(
+            img.bytes >= row.bytes && img.bytes <= row.bytes + row.bytes / 8 + (64 << 10),
+            "{}: {} vs {}",
+            row.name,
+            img.bytes,
+            row.bytes
+        );
+    }
+}
+
 #[test]
 fn the_heap_check_admits_what_allocates_and_names_what_cannot() {
-    // Lavapipe reports a 2 GiB heap: a 256³ Cornell box (1070 MiB) allocates, 512³ (8.4 GiB)
+    // Lavapipe reports a 2 GiB heap: a dense 256³ Cornell box (951 MiB) allocates, 512³ (7.5 GiB)
     // cannot and is told before the allocator fails on one texture of it.
     let ctx = common::context();
     let scene = Scene::embedded_default().unwrap();
-    let big = RenderOptions { dims: Some(UVec3::splat(256)), ..Default::default() };
+    let big = RenderOptions { dims: Some(UVec3::splat(256)), storage: Storage::Dense, ..Default::default() };
     let r = Renderer::new(&ctx, scene.clone(), big).unwrap();
-    assert!(r.memory().mib() > 1000.0);
+    assert!(r.memory().mib() > 900.0);
     drop(r);
-    let huge = RenderOptions { dims: Some(UVec3::splat(512)), ..Default::default() };
+    let huge = RenderOptions { dims: Some(UVec3::splat(512)), storage: Storage::Dense, ..Default::default() };
     let e = Renderer::new(&ctx, scene, huge).err().expect("a 512³ grid fitted the heap").to_string();
     assert!(e.contains("512×512×512") && e.contains("largest heap"), "{e}");
     common::assert_clean(&ctx);
@@ -188,7 +194,7 @@ fn mips_over_occupied_texels_equal_the_dense_filter() {
     // and clears the rest: its mips, and so the image, must be the dense filter's exactly. A
     // filter that missed texels (a short list, a wrong dispatch size) loses indirect light.
     let ctx = common::context();
-    let mut hall = hall();
+    let mut hall = common::hall();
     hall.set_size(Some(96), Some(72)).unwrap();
     let mut cornell = Scene::embedded_default().unwrap();
     cornell.set_size(Some(96), Some(96)).unwrap();

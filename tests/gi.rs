@@ -77,9 +77,8 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
     let r = Renderer::new(&ctx, scene, options(View::Full, 16)).unwrap();
     r.render().unwrap();
     let base = f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
-    let sides: Vec<u32> = bytemuck::pod_collect_to_vec(
-        &gpu::read_image(&ctx, &r.radiance.lit_side, vk::ImageLayout::GENERAL, 0).unwrap(),
-    );
+    // Stored as the voxels are (a brick pool by default): read back as the grid.
+    let sides: Vec<u32> = bytemuck::pod_collect_to_vec(&r.voxels.read_dense(&r.radiance.lit_side).unwrap());
     let lit_sides = sides.iter().filter(|&&s| s >> 24 != 0).count();
     assert!(lit_sides > 100, "injection should record the lit side of the lit voxels ({lit_sides})");
     // A child seen by a cone travelling along `dir` shows its light only where the lit side faces

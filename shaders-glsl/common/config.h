@@ -52,6 +52,19 @@
 // the triangle (exact triangle/box test) and fills those the triangle meets that nobody wrote.
 #define VOXEL_FLAG_NEIGHBOURS 8
 
+// Sparse storage (voxel::bricks, common/bricks.glsl): bricks of BRICK_SIZE³ voxels. The
+// per-voxel textures are read texel by texel (never filtered), so a brick needs no apron and its
+// size only trades the page table (4 bytes a brick) against the empty voxels of occupied
+// bricks. Measured (docs/benchmarks.md, "Sparse storage"): 2³ bricks hold Sponza's 256-voxel
+// grid in 19% of its texels and the Cornell box's 256³ in 5%; 4³ bricks need 38% and 10%, 8³
+// 61% and 19%; with the table, 2³ costs the fewest bytes in both.
+#define BRICK_SIZE 2
+#define BRICK_SHIFT 1
+// Page-table entries that are no slot: being claimed, and refused (the pool is full).
+#define BRICK_LOCKED 0xFFFFFFFFu
+#define BRICK_REFUSED 0xFFFFFFFEu
+#define BRICK_CLAIM_ITERATIONS 1024
+
 // Global illumination (Freed 2018 §4.3-4.5).
 // Diffuse cones: the largest cone set (render::cones), each cone a direction in the surface's
 // tangent frame, a weight and an aperture.

@@ -25,6 +25,11 @@ layout(set = 2, binding = 3, r32ui) uniform coherent volatile uimage3D voxel_emi
 #define OCCUPIED_SET 2
 #define OCCUPIED_BINDING 4
 #include "occupied.glsl"
+// Sparse storage: the page table, which the first write into a brick claims a slot of.
+#define BRICKS_SET 2
+#define BRICKS_BINDING 5
+#define BRICKS_CLAIM
+#include "bricks.glsl"
 
 vec3 to_voxel_space(vec3 world) {
     return (world - voxel.origin_size.xyz) / voxel.origin_size.w;
@@ -67,12 +72,14 @@ bool atomic_average(uint which, ivec3 coord, vec3 value) {
 
 #include "rgb9e5.glsl"
 
-// Writes one voxel sample (albedo, unit normal, emission) if `coord` lies inside the grid.
+// Writes one voxel sample (albedo, unit normal, emission) if `coord` lies inside the grid (and,
+// with sparse storage, its brick has or gets a slot).
 void write_voxel(ivec3 coord, vec3 albedo, vec3 normal, vec3 emission) {
-    if (!in_grid(coord)) return;
-    if (atomic_average(0u, coord, clamp(albedo, 0.0, 1.0))) occupied.voxels[atomicAdd(occupied.count, 1u)] = pack_voxel(coord);
-    atomic_average(1u, coord, normalize(normal) * 0.5 + 0.5);
-    if (max(emission.r, max(emission.g, emission.b)) > 0.0) imageAtomicMax(voxel_emission, coord, encode_rgb9e5(emission));
+    ivec3 t;
+    if (!in_grid(coord) || !claim_brick(coord, t)) return;
+    if (atomic_average(0u, t, clamp(albedo, 0.0, 1.0))) occupied.voxels[atomicAdd(occupied.count, 1u)] = pack_voxel(coord);
+    atomic_average(1u, t, normalize(normal) * 0.5 + 0.5);
+    if (max(emission.r, max(emission.g, emission.b)) > 0.0) imageAtomicMax(voxel_emission, t, encode_rgb9e5(emission));
 }
 
 #endif

@@ -16,6 +16,9 @@ layout(set = 1, binding = 2) uniform sampler3D history;
 layout(push_constant) uniform Push { uint use_history; } push;
 #define OCCUPIED_BINDING 3
 #include "listed.glsl"
+#define BRICKS_SET 1
+#define BRICKS_BINDING 4
+#include "bricks.glsl"
 // Over the occupied voxels only (render::temporal): level 0 is cleared first.
 layout(constant_id = 0) const bool LISTED = false;
 
@@ -23,7 +26,7 @@ void main() {
     ivec3 v;
     ivec3 size = imageSize(radiance);
     if (!listed_or_dense(LISTED, size, v)) return;
-    vec4 now = imageLoad(injected, v);
+    vec4 now = imageLoad(injected, stored_at(v));
     float factor = frame.voxel_grid.w > 0.5 || push.use_history == 0u ? 1.0 : frame.voxel_grid.z;
     vec3 previous = (vec3(v) + 0.5 + frame.history_shift.xyz) / vec3(size);
     bool inside = all(greaterThanEqual(previous, vec3(0.0))) && all(lessThanEqual(previous, vec3(1.0)));

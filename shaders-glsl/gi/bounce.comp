@@ -10,6 +10,9 @@
 #include "frame.glsl"
 #define OCCUPIED_BINDING 8
 #include "occupied.glsl"
+#define BRICKS_SET 1
+#define BRICKS_BINDING 9
+#include "bricks.glsl"
 
 layout(local_size_x = WORKGROUP_1D) in;
 layout(constant_id = 0) const bool ANISOTROPIC = false;
@@ -31,14 +34,15 @@ vec3 unpack_unit(uint p) {
 void main() {
     if (gl_GlobalInvocationID.x >= occupied.count) return;
     ivec3 v = unpack_voxel(occupied.voxels[gl_GlobalInvocationID.x]);
-    ivec3 size = imageSize(bounced);
-    uint a = imageLoad(voxel_albedo, v).r;
-    vec4 own = imageLoad(injected, v);
-    uint side = imageLoad(lit_side, v).r;
+    ivec3 size = ivec3(frame.voxel_dims.xyz);
+    ivec3 t = stored_at(v);
+    uint a = imageLoad(voxel_albedo, t).r;
+    vec4 own = imageLoad(injected, t);
+    uint side = imageLoad(lit_side, t).r;
     bool lit = (side >> 24) != 0u;
-    vec3 n = lit ? unpack_unit(side) : unpack_unit(imageLoad(voxel_normal, v).r);
+    vec3 n = lit ? unpack_unit(side) : unpack_unit(imageLoad(voxel_normal, t).r);
     if (dot(n, n) < 1e-6) {
-        imageStore(bounced, v, own);
+        imageStore(bounced, t, own);
         return;
     }
     n = normalize(n);
@@ -61,9 +65,9 @@ void main() {
             n = -n;
         }
     }
-    imageStore(bounced, v, vec4(own.rgb + albedo * gathered.rgb, own.a));
+    imageStore(bounced, t, vec4(own.rgb + albedo * gathered.rgb, own.a));
     if (!lit) {
         uvec3 q = uvec3(round((n * 0.5 + 0.5) * 255.0));
-        imageStore(lit_side, v, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
+        imageStore(lit_side, t, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
     }
 }

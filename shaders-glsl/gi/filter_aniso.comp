@@ -18,6 +18,9 @@ layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = 
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
 layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
+#define BRICKS_SET 0
+#define BRICKS_BINDING 4
+#include "bricks.glsl"
 // One invocation per occupied texel of the level (as filter.comp).
 layout(constant_id = 0) const bool LISTED = false;
 // direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0;
@@ -29,7 +32,7 @@ layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint
 vec4 child(ivec3 v, vec3 dir) {
     vec4 c = imageLoad(src, v + ivec3(0, push.src_y, 0));
     if (push.base == 0u) return c;
-    uint side = imageLoad(lit_side, v).r;
+    uint side = imageLoad(lit_side, stored_at(v)).r;
     if ((side >> 24) == 0u) return c;
     vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
     return vec4(c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), c.a);

@@ -19,6 +19,9 @@ layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
 layout(set = 1, binding = 5, r32ui) uniform writeonly uimage3D lit_side;
+#define BRICKS_SET 1
+#define BRICKS_BINDING 6
+#include "bricks.glsl"
 // One thread per `stride` x `stride` block of texels, reading its centre texel (render::inject:
 // the stride keeps INJECT_TEXELS_PER_VOXEL texels per voxel where the map has more).
 layout(push_constant) uniform Push { uint stride; } push;
@@ -55,7 +58,7 @@ void main() {
     for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= l_dir) {
         ivec3 u = ivec3(floor(g));
         if (!voxel_in_grid(u)) break;
-        uint b = imageLoad(voxel_albedo, u).r;
+        uint b = imageLoad(voxel_albedo, stored_at(u)).r;
         if ((b >> 24) != 0u) {
             v = u;
             a = b;
@@ -66,20 +69,21 @@ void main() {
     if ((a >> 24) == 0u) {
         v = ivec3(floor(world_to_voxel(p + l_dir * step)));
         if (!voxel_in_grid(v)) return;
-        a = imageLoad(voxel_albedo, v).r;
+        a = imageLoad(voxel_albedo, stored_at(v)).r;
         if ((a >> 24) == 0u) return;
     }
+    ivec3 t = stored_at(v);
     vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
-    vec3 normal = unpack(imageLoad(voxel_normal, v).r).xyz * 2.0 - 1.0;
+    vec3 normal = unpack(imageLoad(voxel_normal, t).r).xyz * 2.0 - 1.0;
     vec3 l;
     vec3 irradiance = light_incident(centre, l);
     float cos_theta = length(normal) > 1e-3 ? abs(dot(normalize(normal), l)) : 1.0;
     vec3 reflected = unpack(a).rgb / PI * irradiance * cos_theta;
-    vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
-    imageStore(target, v, vec4(emission + reflected, 1.0));
+    vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, t).r);
+    imageStore(target, t, vec4(emission + reflected, 1.0));
     if (length(normal) > 1e-3) {
         vec3 side = normalize(normal) * (dot(normal, l) < 0.0 ? -1.0 : 1.0);
         uvec3 q = uvec3(round((side * 0.5 + 0.5) * 255.0));
-        imageStore(lit_side, v, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
+        imageStore(lit_side, t, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
     }
 }

@@ -14,6 +14,9 @@ layout(set = 0, binding = 0, rgba16f) uniform readonly image3D radiance;
 layout(set = 0, binding = 1, r32ui) uniform readonly uimage3D lit_side;
 layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D moment;
+#define BRICKS_SET 0
+#define BRICKS_BINDING 5
+#include "bricks.glsl"
 // One invocation per occupied voxel (the rest of the level is cleared: empty voxels have none).
 layout(constant_id = 0) const bool LISTED = false;
 
@@ -23,11 +26,11 @@ void main() {
     ivec3 v;
     if (!listed_or_dense(LISTED, imageSize(moment), v)) return;
     float total = dot(imageLoad(radiance, v).rgb, LUMA);
-    uint side = imageLoad(lit_side, v).r;
+    uint side = imageLoad(lit_side, stored_at(v)).r;
     vec3 m = vec3(0.0);
     if ((side >> 24) != 0u) {
         vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
-        float emitted = dot(decode_rgb9e5(imageLoad(voxel_emission, v).r), LUMA);
+        float emitted = dot(decode_rgb9e5(imageLoad(voxel_emission, stored_at(v)).r), LUMA);
         m = normalize(n) * max(total - emitted, 0.0);
     }
     imageStore(moment, v, vec4(m, total));

@@ -8,6 +8,9 @@ layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
 layout(set = 1, binding = 0, r32ui) uniform readonly uimage3D voxel_albedo;
 layout(set = 1, binding = 1) uniform sampler3D radiance_volume;
 layout(set = 1, binding = 2, rgba32f) uniform writeonly image2D hdr;
+#define BRICKS_SET 1
+#define BRICKS_BINDING 3
+#include "bricks.glsl"
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -33,7 +36,7 @@ void main() {
             vec4 s = textureLod(radiance_volume, p, level);
             if (s.a > 0.3) { color = s.rgb / s.a; break; }
         } else {
-            uint a = imageLoad(voxel_albedo, ivec3(floor(p * frame.voxel_dims.xyz))).r;
+            uint a = imageLoad(voxel_albedo, stored_at(clamp(ivec3(floor(p * frame.voxel_dims.xyz)), ivec3(0), ivec3(frame.voxel_dims.xyz) - 1))).r;
             if ((a >> 24) != 0u) {
                 color = vec3(float(a & 0xffu), float((a >> 8) & 0xffu), float((a >> 16) & 0xffu)) / 255.0;
                 break;

@@ -34,7 +34,7 @@ void main() {
             ivec3 c = own + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;
             if (i == 13 || !in_grid(c)) continue;
             vec3 centre = vec3(c) + 0.5;
-            if (imageLoad(voxel_albedo, c).r == 0u &&
+            if (imageLoad(voxel_albedo, stored_at(c)).r == 0u &&
                 triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, vec3(0.5))) {
                 write_voxel(c, albedo, normal, m.emissive.rgb);
             }

@@ -8,7 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::accuracy::AccuracyRow;
-use super::stability::Regime;
+use super::stability::{Regime, Series};
 use super::{Results, Row};
 use crate::error::{Error, Result};
 
@@ -279,8 +279,11 @@ macro_rules! both_backends {
 }
 
 /// Draws the four charts into `dir`; returns the files written.
-pub fn draw_all(dir: &Path, r: &Results) -> Result<Vec<PathBuf>> {
+pub fn draw_all(dir: &Path, all: &Results) -> Result<Vec<PathBuf>> {
     ensure_font()?;
+    // The voxelizer charts over the default storage; the storage charts over every mode.
+    let stored = crate::voxel::bricks::Storage::default().resolve(false).label();
+    let r = &Results { rows: all.rows.iter().filter(|x| x.storage == stored).cloned().collect(), ..all.clone() };
     let charts: [(&str, Chart); 4] = [
         ("voxelize_time", both_backends!(voxelize_time, 900, 560)),
         ("passes_stacked", both_backends!(passes_stacked, 1000, 640)),
@@ -294,7 +297,53 @@ pub fn draw_all(dir: &Path, r: &Results) -> Result<Vec<PathBuf>> {
         files.push(path.with_extension("png"));
         files.push(path.with_extension("svg"));
     }
+    if all.rows.iter().any(|x| x.storage != stored) {
+        for g in storage_regimes(all) {
+            files.extend(draw_named(dir, &g.name, &g)?);
+        }
+    }
     Ok(files)
+}
+
+/// Memory and frame time against FLIP, one curve per scene and storage mode (the default
+/// voxelizer's rows: the only one every mode runs), over the resolutions.
+pub fn storage_regimes(r: &Results) -> Vec<Regime> {
+    let method = crate::render::RenderOptions::default().method.label();
+    let rows: Vec<&super::Row> = r.rows.iter().filter(|x| x.voxelizer == method).collect();
+    let mut keys: Vec<(String, String)> = rows.iter().map(|x| (x.scene.clone(), x.storage.clone())).collect();
+    keys.sort();
+    keys.dedup();
+    let series = |y: fn(&super::Row) -> f64| -> Vec<Series> {
+        keys.iter()
+            .map(|(scene, storage)| {
+                let mut points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|x| &x.scene == scene && &x.storage == storage)
+                    .map(|x| (x.flip as f64, y(x)))
+                    .collect();
+                points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                Series { label: format!("{scene}, {storage}"), points }
+            })
+            .collect()
+    };
+    let regime = |name: &str, y_label: &str, y: fn(&super::Row) -> f64| Regime {
+        name: name.into(),
+        title: format!("{y_label} against FLIP to the path tracer, per storage ({method}, N = {:?})", {
+            let mut n: Vec<u32> = rows.iter().map(|x| x.resolution).collect();
+            n.sort();
+            n.dedup();
+            n
+        }),
+        x: "FLIP against the path-traced reference".into(),
+        y: y_label.into(),
+        log_x: false,
+        log_y: true,
+        series: series(y),
+    };
+    vec![
+        regime("storage_memory_vs_flip", "GPU memory MiB", |x| x.memory_mib),
+        regime("storage_time_vs_flip", "frame GPU ms", |x| x.total_ms),
+    ]
 }
 
 fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) -> DrawResult<DB> {
@@ -352,8 +401,13 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
 
 /// Draws one stability regime as `stability_<name>.png` and `.svg` in `dir`.
 pub fn draw_regime(dir: &Path, g: &Regime) -> Result<Vec<PathBuf>> {
+    draw_named(dir, &format!("stability_{}", g.name), g)
+}
+
+/// A regime's chart as `<stem>.png` and `.svg` in `dir`.
+pub fn draw_named(dir: &Path, stem: &str, g: &Regime) -> Result<Vec<PathBuf>> {
     ensure_font()?;
-    let path = dir.join(format!("stability_{}", g.name));
+    let path = dir.join(stem);
     let err = |m: String| Error::input(&path, format!("drawing the chart: {m}"));
     regime_chart(BitMapBackend::new(&path.with_extension("png"), (900, 560)).into_drawing_area(), g)
         .map_err(|e| err(e.to_string()))?;

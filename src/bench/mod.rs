@@ -26,6 +26,7 @@ use crate::reference::metrics;
 use crate::reference::pathtrace::{PathTracer, RefOptions};
 use crate::render::{RenderOptions, Renderer};
 use crate::scene::{Draw, Mesh, Scene};
+use crate::voxel::bricks::Storage;
 use crate::voxel::{headless, occupancy_of, Coverage, VoxelizeMethod};
 
 pub struct BenchOptions {
@@ -39,6 +40,9 @@ pub struct BenchOptions {
     pub subdivisions: u32,
     pub out_dir: PathBuf,
     pub cache_dir: PathBuf,
+    /// Storage modes beside the default one, run with the default voxelizer (e.g. dense, to
+    /// chart memory and time against FLIP per mode).
+    pub compare_storage: Vec<Storage>,
 }
 
 /// One configuration's figures.
@@ -56,6 +60,9 @@ pub struct Row {
     pub memory_mib: f64,
     #[serde(default)]
     pub cube_memory_mib: f64,
+    /// Where the per-voxel textures lived (runs before sparse storage: dense).
+    #[serde(default = "dense_label")]
+    pub storage: String,
     pub frames: u32,
     /// Median GPU ms per pass.
     pub passes: Vec<Timing>,
@@ -79,7 +86,7 @@ pub struct TriangleRow {
     pub voxelize_ms: f64,
 }
 
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct Results {
     pub device: String,
     pub driver: String,
@@ -97,6 +104,10 @@ pub struct ReferenceInfo {
     pub scene: String,
     pub path: PathBuf,
     pub relative_noise: f32,
+}
+
+fn dense_label() -> String {
+    Storage::Dense.label().into()
 }
 
 /// The voxelizers a device can run: tessellation, rasterized with MSAA, without, and
@@ -207,10 +218,17 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         let (reference, info) = reference_cached(scene, name, 1, opts.reference_spp, &opts.cache_dir, progress)?;
         let ref_rgb = metrics::tonemap(&reference);
         references.push(info);
+        let default_method = RenderOptions::default().method;
+        let stored = Storage::default();
+        let configs: Vec<(VoxelizeMethod, Storage)> = methods
+            .iter()
+            .map(|&m| (m, stored))
+            .chain(opts.compare_storage.iter().filter(|&&s| s != stored).map(|&s| (default_method, s)))
+            .collect();
         for &res in &opts.resolutions {
-            for method in &methods {
-                progress(&format!("{name} {} {res}³", method.label()));
-                let options = RenderOptions { method: *method, resolution: Some(res), ..Default::default() };
+            for &(method, storage) in &configs {
+                progress(&format!("{name} {} {res}³, {} storage", method.label(), storage.label()));
+                let options = RenderOptions { method, resolution: Some(res), storage, ..Default::default() };
                 let renderer = Renderer::new(ctx, scene.clone(), options)?;
                 for _ in 0..opts.warmup {
                     renderer.render()?;
@@ -234,6 +252,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
                     dims: memory.dims,
                     memory_mib: memory.mib(),
                     cube_memory_mib: memory.cube_mib(),
+                    storage: renderer.voxels.bricks.storage.label().into(),
                     frames: opts.frames,
                     total_ms: get("total"),
                     total_min_ms: totals.iter().cloned().fold(f64::INFINITY, f64::min),
@@ -280,7 +299,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     })
 }
 
-pub const CSV_HEADER: &str = "scene,triangles,voxelizer,resolution,frames,voxelize_ms,shadow_ms,inject_ms,filter_ms,gbuffer_ms,shade_ms,tonemap_ms,total_ms,total_min_ms,total_max_ms,recall,precision,iou,flip,rmse,dims,memory_mib,cube_memory_mib";
+pub const CSV_HEADER: &str = "scene,triangles,voxelizer,resolution,frames,voxelize_ms,shadow_ms,inject_ms,filter_ms,gbuffer_ms,shade_ms,tonemap_ms,total_ms,total_min_ms,total_max_ms,recall,precision,iou,flip,rmse,dims,memory_mib,cube_memory_mib,storage";
 
 /// Writes results.csv, results.json and the charts into `dir`.
 pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
@@ -290,7 +309,7 @@ pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
     for r in &results.rows {
         let p = |name: &str| r.passes.iter().find(|t| t.pass == name).map(|t| t.ms).unwrap_or(0.0);
         csv.push_str(&format!(
-            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.6},{},{:.1},{:.1}\n",
+            "{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.6},{},{:.1},{:.1},{}\n",
             r.scene,
             r.triangles,
             r.voxelizer,
@@ -313,7 +332,8 @@ pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
             r.rmse,
             r.dims.map(|d| d.to_string()).join("x"),
             r.memory_mib,
-            r.cube_memory_mib
+            r.cube_memory_mib,
+            r.storage
         ));
     }
     let write = |name: &str, text: &str| -> Result<PathBuf> {
@@ -351,15 +371,17 @@ pub fn summary(r: &Results) -> String {
         ));
     }
     s.push_str(
-        "\n| scene | voxelizer | N | voxelize ms | frame ms (min–max) | recall | precision | IoU | FLIP | RMSE |\n",
+        "\n| scene | voxelizer | storage | N | memory MiB | voxelize ms | frame ms (min–max) | recall | precision | IoU | FLIP | RMSE |\n",
     );
-    s.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for x in &r.rows {
         s.push_str(&format!(
-            "| {} | {} | {} | {:.2} | {:.1} ({:.1}–{:.1}) | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |\n",
+            "| {} | {} | {} | {} | {:.1} | {:.2} | {:.1} ({:.1}–{:.1}) | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |\n",
             x.scene,
             x.voxelizer,
+            x.storage,
             x.resolution,
+            x.memory_mib,
             x.voxelize_ms,
             x.total_ms,
             x.total_min_ms,
@@ -372,10 +394,11 @@ pub fn summary(r: &Results) -> String {
         ));
     }
     s.push_str("\nTess/raster (MSAA) voxelization time ratio:\n\n| scene | N | tess ms | raster ms | ratio |\n|---|---|---|---|---|\n");
-    for t in r.rows.iter().filter(|x| x.voxelizer == "tess") {
-        if let Some(m) =
-            r.rows.iter().find(|x| x.voxelizer == "raster-msaa" && x.scene == t.scene && x.resolution == t.resolution)
-        {
+    let stored = Storage::default().resolve(false).label();
+    for t in r.rows.iter().filter(|x| x.voxelizer == "tess" && x.storage == stored) {
+        if let Some(m) = r.rows.iter().find(|x| {
+            x.voxelizer == "raster-msaa" && x.storage == stored && x.scene == t.scene && x.resolution == t.resolution
+        }) {
             s.push_str(&format!(
                 "| {} | {} | {:.2} | {:.2} | {:.1} |\n",
                 t.scene,

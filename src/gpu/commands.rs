@@ -193,6 +193,41 @@ pub fn fill_buffer(ctx: &Context, cmd: vk::CommandBuffer, buffer: &Buffer, bytes
     unsafe { ctx.device.cmd_fill_buffer(cmd, buffer.raw, 0, bytes, value) };
 }
 
+/// Fills `bytes` (a multiple of 4, or `vk::WHOLE_SIZE`) of `buffer` from `offset` with `value`.
+pub fn fill_buffer_at(ctx: &Context, cmd: vk::CommandBuffer, buffer: &Buffer, offset: u64, bytes: u64, value: u32) {
+    unsafe { ctx.device.cmd_fill_buffer(cmd, buffer.raw, offset, bytes, value) };
+}
+
+/// Writes `data` (at most 65536 bytes, a multiple of 4) into `buffer` at offset 0, in the
+/// command stream (a transfer write).
+pub fn update_buffer(ctx: &Context, cmd: vk::CommandBuffer, buffer: &Buffer, data: &[u8]) {
+    unsafe { ctx.device.cmd_update_buffer(cmd, buffer.raw, 0, data) };
+}
+
+/// Copies the first `bytes` of `src` into `dst`.
+pub fn copy_buffer(ctx: &Context, cmd: vk::CommandBuffer, src: &Buffer, dst: &Buffer, bytes: u64) {
+    let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: bytes }];
+    unsafe { ctx.device.cmd_copy_buffer(cmd, src.raw, dst.raw, &region) };
+}
+
+/// Reads a device-local buffer (with TRANSFER_SRC usage) back through a staging copy, after
+/// all submitted work.
+pub fn read_buffer(ctx: &Arc<Context>, buffer: &Buffer) -> Result<Vec<u8>> {
+    let staging = Buffer::new(
+        ctx,
+        &format!("{} readback", buffer.name),
+        buffer.size,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
+    ctx.submit_and_wait(&format!("read back {}", buffer.name), |cmd| {
+        memory_barrier(ctx, cmd, scope::ANY, scope::TRANSFER_READ);
+        copy_buffer(ctx, cmd, buffer, &staging, buffer.size);
+        memory_barrier(ctx, cmd, scope::TRANSFER_WRITE, scope::HOST_READ);
+    })?;
+    Ok(staging.read().to_vec())
+}
+
 /// Sets a full-size viewport and scissor.
 pub fn set_viewport(ctx: &Context, cmd: vk::CommandBuffer, width: u32, height: u32) {
     let viewport =

@@ -18,6 +18,7 @@ pub const NONE: Scope = (S::NONE, A::NONE);
 pub const ANY: Scope = (S::ALL_COMMANDS, a(A::MEMORY_READ, A::MEMORY_WRITE));
 pub const TRANSFER_READ: Scope = (S::ALL_TRANSFER, A::TRANSFER_READ);
 pub const TRANSFER_WRITE: Scope = (S::ALL_TRANSFER, A::TRANSFER_WRITE);
+pub const HOST_READ: Scope = (S::HOST, A::HOST_READ);
 pub const COMPUTE_SAMPLED: Scope = (S::COMPUTE_SHADER, A::SHADER_SAMPLED_READ);
 pub const CLEAR_WRITE: Scope = (S::CLEAR, A::TRANSFER_WRITE);
 pub const DEPTH_RW: Scope = (

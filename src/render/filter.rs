@@ -86,17 +86,22 @@ impl FilterPass {
             0,
         )?;
 
-        let moment_set =
-            DescriptorSet::new(ctx, "radiance moment", &[storage(0), storage(1), storage(2), storage(3), list(4)])?;
+        let moment_set = DescriptorSet::new(
+            ctx,
+            "radiance moment",
+            &[storage(0), storage(1), storage(2), storage(3), list(4), list(5)],
+        )?;
         moment_set.write_images(0, st, &[storage_info(volume.radiance.mip_view(0))]);
         moment_set.write_storage(1, volume.lit_side.view.raw);
         moment_set.write_storage(2, voxels.emission.view.raw);
         moment_set.write_images(3, st, &[storage_info(volume.moment.mip_view(0))]);
         moment_set.write_buffer(4, sb, &occupied.list);
+        moment_set.write_buffer(5, sb, &voxels.bricks.table);
+        let stored = voxels.bricks.spec(listed as u32);
         let moment_pipeline = Pipeline::compute(
             ctx,
             "radiance moment",
-            Stage::new(c, shaders::GI_MOMENT_COMP).spec(&spec),
+            Stage::new(c, shaders::GI_MOMENT_COMP).spec(&stored),
             &[moment_set.layout],
             0,
         )?;
@@ -104,7 +109,7 @@ impl FilterPass {
         let aniso_sets = DescriptorSet::new_many(
             ctx,
             "anisotropic mip filter",
-            &[storage(0), storage(1), storage(2), list(3)],
+            &[storage(0), storage(1), storage(2), list(3), list(4)],
             per_chain,
         )?;
         for level in 1..volume.levels {
@@ -114,13 +119,14 @@ impl FilterPass {
             aniso_sets.write_images_at(set, 1, st, &[storage_info(volume.aniso.mip_view(level - 1))]);
             aniso_sets.write_images_at(set, 2, st, &[storage_info(volume.lit_side.view.raw)]);
             aniso_sets.write_buffer_at(set, 3, sb, level_list(level));
+            aniso_sets.write_buffer_at(set, 4, sb, &voxels.bricks.table);
         }
         // Where each chain's block starts at each chain mip (src of level l is mip l - 2).
         let offsets = (0..6).map(|d| (0..per_chain).map(|m| volume.chain_offset(d, m)).collect()).collect();
         let aniso_pipeline = Pipeline::compute(
             ctx,
             "anisotropic mip filter",
-            Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&spec),
+            Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&stored),
             &[aniso_sets.layout],
             16,
         )?;

@@ -60,19 +60,19 @@ impl InjectPass {
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
-        let resolve_set = DescriptorSet::new(
-            ctx,
-            "resolve",
-            &[storage(0), storage(1), storage(2), Binding::new(3, vk::DescriptorType::STORAGE_BUFFER, c)],
-        )?;
+        let buffer = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, c);
+        let bricks = &voxels.bricks;
+        let resolve_set =
+            DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2), buffer(3), buffer(4)])?;
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
         resolve_set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &voxels.occupied.list);
+        resolve_set.write_buffer(4, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
         let resolve = Pipeline::compute(
             ctx,
             "resolve",
-            Stage::new(c, shaders::GI_RESOLVE_COMP).spec(&[listed as u32]),
+            Stage::new(c, shaders::GI_RESOLVE_COMP).spec(&bricks.spec(listed as u32)),
             &[resolve_set.layout],
             0,
         )?;
@@ -96,6 +96,7 @@ impl InjectPass {
                 storage(3),
                 storage(4),
                 storage(5),
+                buffer(6),
             ],
         )?;
         inject_set.write_sampled(0, shadow.map.view.raw, depth_sampler.raw);
@@ -104,10 +105,11 @@ impl InjectPass {
         inject_set.write_storage(3, voxels.emission.view.raw);
         inject_set.write_storage(4, radiance.injected.view.raw);
         inject_set.write_storage(5, radiance.lit_side.view.raw);
+        inject_set.write_buffer(6, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
         let inject = Pipeline::compute(
             ctx,
             "inject",
-            Stage::new(c, shaders::GI_INJECT_COMP),
+            Stage::new(c, shaders::GI_INJECT_COMP).spec(&bricks.spec(0)),
             &[scene.set.layout, inject_set.layout],
             4,
         )?;

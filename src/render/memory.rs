@@ -7,8 +7,22 @@ use std::fmt;
 
 use super::radiance::RadianceDescs;
 use crate::gpu::ImageDesc;
-use crate::voxel::volume::{voxel_desc, VOXEL_TEXTURES};
+use crate::voxel::bricks;
+use crate::voxel::volume::{extent_of, voxel_desc, VOXEL_TEXTURES};
 use crate::voxel::VoxelGrid;
+
+/// What decides a renderer's allocations besides its grid.
+#[derive(Clone, Copy, Debug)]
+pub struct Layout {
+    /// The voxel-space bounce target.
+    pub bounces: bool,
+    /// The mip levels' lists of occupied texels.
+    pub listed: bool,
+    /// Brick-pool slots (the empty one included) of sparse storage; `None`: dense.
+    pub pool: Option<u32>,
+    /// A full-size history for temporal filtering.
+    pub temporal: bool,
+}
 
 /// One texture or buffer.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -47,25 +61,42 @@ fn cube_desc(desc: &ImageDesc, grid: &VoxelGrid) -> ImageDesc {
 }
 
 impl MemoryReport {
-    /// What a renderer allocates at `grid`, with or without the bounce target and the mip
-    /// levels' lists of occupied texels (`listed`): the voxel textures, the radiance volumes and
-    /// the occupied-voxel lists.
-    pub fn for_grid(grid: &VoxelGrid, bounces: bool, listed: bool) -> Self {
-        let voxel = voxel_desc(grid);
-        let mut images: Vec<(&'static str, ImageDesc)> = VOXEL_TEXTURES.iter().map(|&n| (n, voxel)).collect();
-        images.extend(RadianceDescs::new(grid, bounces).named());
-        let mut rows: Vec<MemoryRow> = images
+    /// What a renderer allocates at `grid` in `layout`: the voxel textures, the radiance
+    /// volumes, the page table and the occupied-voxel lists. The cube column is the dense
+    /// layout over the bounding cube.
+    pub fn for_grid(grid: &VoxelGrid, layout: &Layout) -> Self {
+        let Layout { bounces, listed, pool, temporal } = *layout;
+        let dense = extent_of(grid.dims);
+        let stored = pool.map_or(dense, bricks::pool_extent);
+        let named = |extent| {
+            let voxel = voxel_desc(extent);
+            let mut v: Vec<(&'static str, ImageDesc)> = VOXEL_TEXTURES.iter().map(|&n| (n, voxel)).collect();
+            v.extend(RadianceDescs::new(grid, bounces, extent, temporal).named());
+            v
+        };
+        let mut rows: Vec<MemoryRow> = named(stored)
             .into_iter()
-            .map(|(name, d)| MemoryRow {
+            .zip(named(dense))
+            .map(|((name, d), (_, cube))| MemoryRow {
                 name,
                 extent: d.size(),
                 mips: d.mip_levels,
                 bytes: d.texel_bytes(),
-                cube_bytes: cube_desc(&d, grid).texel_bytes(),
+                cube_bytes: cube_desc(&cube, grid).texel_bytes(),
             })
             .collect();
+        if pool.is_some() {
+            let table = bricks::table_bytes(grid);
+            rows.push(MemoryRow {
+                name: "brick page table",
+                extent: [table as u32, 1, 1],
+                mips: 1,
+                bytes: table,
+                cube_bytes: 0,
+            });
+        }
         let list = crate::voxel::occupied::list_bytes;
-        let occupied = list(grid.voxel_count() as u64);
+        let occupied = list(pool.map_or(grid.voxel_count() as u64, |p| bricks::voxel_room(grid, p)));
         if listed {
             let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels());
             let n = grid.longest();

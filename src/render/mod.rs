@@ -29,6 +29,7 @@ use crate::scene::file::Filter;
 use crate::scene::gpu::FrameUniforms;
 use crate::scene::gpu::SceneGpu;
 use crate::scene::{Light, Scene};
+use crate::voxel::bricks::Storage;
 use crate::voxel::{VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
 use bounce::BouncePass;
 use deferred::DeferredShadePass;
@@ -152,6 +153,10 @@ pub struct RenderOptions {
     pub inject_texels: f32,
     /// Which texels the passes over the volume visit.
     pub work: Work,
+    /// Where the per-voxel textures live (voxel::bricks).
+    pub storage: Storage,
+    /// Slots of the sparse brick pool; `None`: as many as a census counts.
+    pub bricks: Option<u32>,
 }
 
 /// Which texels the mip filters visit.
@@ -177,6 +182,8 @@ impl Default for RenderOptions {
             follow: None,
             inject_texels: crate::config::INJECT_TEXELS_PER_VOXEL,
             work: Work::default(),
+            storage: Storage::default(),
+            bricks: None,
         }
     }
 }
@@ -238,18 +245,29 @@ impl Renderer {
         // Light lives in occupied voxels only: a voxel the temporal blend would leave lit after
         // its geometry left it (a trail behind a moving volume) stays dark.
         let listed = options.work == Work::Occupied;
-        // The whole set before any of it is allocated.
-        crate::voxel::volume::check_fits(
+        let sparse = options.storage.resolve(options.follow.is_some()) == Storage::Sparse;
+        // The whole set before any of it is allocated (all but the pool, whose size the census
+        // tells), and again with the pool.
+        let bounces = scene.settings.gi.bounces > 1;
+        let temporal = scene.settings.gi.temporal < 1.0;
+        let need =
+            |pool| memory::MemoryReport::for_grid(&grid, &memory::Layout { bounces, listed, pool, temporal }).bytes;
+        crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(1)))?;
+        let (voxels, voxelizer) = crate::voxel::build(
             ctx,
-            &grid,
-            memory::MemoryReport::for_grid(&grid, scene.settings.gi.bounces > 1, listed).bytes,
+            &scene,
+            &scene_gpu,
+            grid,
+            options.method,
+            options.storage,
+            options.bricks,
+            options.follow.is_some(),
         )?;
-        let voxels = VoxelVolume::new(ctx, grid)?;
-        let voxelizer = Voxelizer::new(ctx, &scene, &scene_gpu, &voxels, options.method)?;
+        crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(voxels.bricks.capacity)))?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
-        let radiance = RadianceVolume::new(ctx, &grid, gi.bounces > 1)?;
+        let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal)?;
         let occupied = &voxels.occupied;
         let texel = scene
             .lights
@@ -258,7 +276,7 @@ impl Renderer {
             .unwrap_or(0.0);
         let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, stride, listed)?;
-        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, occupied, listed)?;
+        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed)?;
         let filter = FilterPass::new(ctx, &radiance, &voxels, occupied, listed)?;
         let bounce = (gi.bounces > 1)
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, occupied, aniso))
@@ -389,6 +407,7 @@ impl Renderer {
         self.update_uniforms();
         self.ctx.submit_and_wait("frame", |cmd| self.record(cmd))?;
         self.frame_recorded();
+        self.voxels.bricks.check()?;
         self.timings()
     }
 
@@ -400,7 +419,14 @@ impl Renderer {
 
     /// Bytes of the voxel textures and radiance volumes at this grid, beside the bounding cube's.
     pub fn memory(&self) -> memory::MemoryReport {
-        memory::MemoryReport::for_grid(&self.voxels.grid, self.radiance.bounced.is_some(), self.filter.is_listed())
+        let b = &self.voxels.bricks;
+        let layout = memory::Layout {
+            bounces: self.radiance.bounced.is_some(),
+            listed: self.filter.is_listed(),
+            pool: b.sparse().then_some(b.capacity),
+            temporal: self.radiance.has_history(),
+        };
+        memory::MemoryReport::for_grid(&self.voxels.grid, &layout)
     }
 
     /// The GPU time of each pass of the last finished frame.

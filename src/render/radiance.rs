@@ -25,8 +25,8 @@ pub struct RadianceVolume {
     /// emits to every side. The directional chains use it so that a lit face is dark when seen
     /// from behind.
     pub lit_side: Image,
-    /// A copy of the previous frame's level 0, which the temporal blend reprojects (only when
-    /// temporal filtering is on).
+    /// A copy of the previous frame's level 0, which the temporal blend reprojects (one texel
+    /// when temporal filtering is off).
     pub history: Image,
     /// Each extra bounce's level 0 before it is blended in (only with more than one bounce).
     pub bounced: Option<Image>,
@@ -50,7 +50,10 @@ pub struct RadianceDescs {
 }
 
 impl RadianceDescs {
-    pub fn new(grid: &VoxelGrid, bounces: bool) -> Self {
+    /// Over `grid`, the per-voxel targets (injected light, lit side, bounce target) at
+    /// `stored`: the grid's extent, or the brick pool's (voxel::bricks); the history at level
+    /// 0's extent only with `temporal` filtering (else one texel, bound but never read).
+    pub fn new(grid: &VoxelGrid, bounces: bool, stored: vk::Extent3D, temporal: bool) -> Self {
         let levels = grid.mip_levels();
         let extent = extent_of(grid.dims);
         let storage =
@@ -59,14 +62,19 @@ impl RadianceDescs {
         let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
         let chain = (grid.dims / 2).max(glam::UVec3::ONE);
         let atlas = vk::Extent3D { width: chain.x, height: chain.y * crate::config::ANISO_BLOCKS, depth: chain.z };
+        let pooled = |format, usage| ImageDesc::d3_extent(format, stored, usage);
         RadianceDescs {
-            injected: d3(storage),
+            injected: pooled(RADIANCE_FORMAT, storage),
             radiance: d3(sampled).mips(levels),
             aniso: ImageDesc::d3_extent(RADIANCE_FORMAT, atlas, sampled).mips((levels - 1).max(1)),
-            lit_side: ImageDesc::d3_extent(crate::voxel::volume::VOXEL_FORMAT, extent, storage),
-            history: d3(sampled),
+            lit_side: pooled(crate::voxel::volume::VOXEL_FORMAT, storage),
+            history: if temporal {
+                d3(sampled)
+            } else {
+                ImageDesc::d3_extent(RADIANCE_FORMAT, vk::Extent3D { width: 1, height: 1, depth: 1 }, sampled)
+            },
             moment: d3(sampled).mips(levels),
-            bounced: bounces.then(|| d3(storage)),
+            bounced: bounces.then(|| pooled(RADIANCE_FORMAT, storage)),
         }
     }
 
@@ -86,8 +94,10 @@ impl RadianceDescs {
 }
 
 impl RadianceVolume {
-    /// Volumes over `grid`'s dims; `bounces`: also the target of the voxel-space bounce pass.
-    pub fn new(ctx: &Arc<Context>, grid: &VoxelGrid, bounces: bool) -> Result<Self> {
+    /// Volumes over `grid`'s dims, the per-voxel targets in `voxels`' layout; `bounces`: also
+    /// the target of the voxel-space bounce pass; `temporal`: a full-size history.
+    pub fn new(ctx: &Arc<Context>, voxels: &crate::voxel::VoxelVolume, bounces: bool, temporal: bool) -> Result<Self> {
+        let grid = &voxels.grid;
         let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, RADIANCE_FORMAT) };
         let need = vk::FormatFeatureFlags::STORAGE_IMAGE | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
         if !props.optimal_tiling_features.contains(need) {
@@ -97,7 +107,7 @@ impl RadianceVolume {
                 needed_by: "the radiance volume",
             });
         }
-        let d = RadianceDescs::new(grid, bounces);
+        let d = RadianceDescs::new(grid, bounces, voxels.bricks.extent(grid), temporal);
         let levels = d.radiance.mip_levels;
         let mut images = d
             .named()
@@ -132,6 +142,11 @@ impl RadianceVolume {
         let mut v = vec![&self.injected, &self.radiance, &self.aniso, &self.lit_side, &self.history, &self.moment];
         v.extend(&self.bounced);
         v
+    }
+
+    /// Whether the history holds level 0 (temporal filtering can run).
+    pub fn has_history(&self) -> bool {
+        self.history.desc.extent == self.radiance.desc.extent
     }
 
     /// Descriptor info for sampling the whole mip chain (GENERAL layout).

@@ -36,12 +36,12 @@ pub struct TemporalBlend {
 }
 
 impl TemporalBlend {
-    /// `listed`: over `occupied`'s voxels.
+    /// `listed`: over the voxels of `voxels`' occupied list (its sources stored as its voxels).
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
         radiance: &RadianceVolume,
-        occupied: &OccupiedVoxels,
+        voxels: &crate::voxel::VoxelVolume,
         listed: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
@@ -55,6 +55,7 @@ impl TemporalBlend {
                 storage(1),
                 Binding::new(2, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
                 Binding::new(3, vk::DescriptorType::STORAGE_BUFFER, c),
+                Binding::new(4, vk::DescriptorType::STORAGE_BUFFER, c),
             ],
             sources.len() as u32,
         )?;
@@ -72,12 +73,13 @@ impl TemporalBlend {
                 vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
                 &[vk::DescriptorImageInfo { sampler: radiance.sampler.raw, ..info(radiance.history.view.raw) }],
             );
-            sets.write_buffer_at(i, 3, vk::DescriptorType::STORAGE_BUFFER, &occupied.list);
+            sets.write_buffer_at(i, 3, vk::DescriptorType::STORAGE_BUFFER, &voxels.occupied.list);
+            sets.write_buffer_at(i, 4, vk::DescriptorType::STORAGE_BUFFER, &voxels.bricks.table);
         }
         let pipeline = Pipeline::compute(
             ctx,
             "temporal blend",
-            Stage::new(c, shaders::GI_BLEND_COMP).spec(&[listed as u32]),
+            Stage::new(c, shaders::GI_BLEND_COMP).spec(&voxels.bricks.spec(listed as u32)),
             &[scene.set.layout, sets.layout],
             4,
         )?;

@@ -35,15 +35,17 @@ impl VolumeViewPass {
                 Binding::new(0, vk::DescriptorType::STORAGE_IMAGE, c),
                 Binding::new(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
                 Binding::new(2, vk::DescriptorType::STORAGE_IMAGE, c),
+                Binding::new(3, vk::DescriptorType::STORAGE_BUFFER, c),
             ],
         )?;
         set.write_storage(0, voxels.albedo.view.raw);
         set.write_images(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, &[radiance.sampled_info()]);
         set.write_storage(2, targets.hdr.view.raw);
+        set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &voxels.bricks.table);
         let pipeline = Pipeline::compute(
             ctx,
             "volume view",
-            Stage::new(c, shaders::GI_VOLUME_VIEW_COMP),
+            Stage::new(c, shaders::GI_VOLUME_VIEW_COMP).spec(&voxels.bricks.spec(0)),
             &[scene.set.layout, set.layout],
             0,
         )?;

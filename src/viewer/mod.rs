@@ -275,7 +275,12 @@ impl App {
             KeyCode::KeyT => {
                 let gi = &mut r.renderer.scene.settings.gi;
                 gi.temporal = if gi.temporal >= 1.0 { 0.2 } else { 1.0 };
-                println!("temporal filter: {}", if gi.temporal < 1.0 { "on (0.2)" } else { "off" });
+                let on = gi.temporal < 1.0;
+                println!("temporal filter: {}", if on { "on (0.2)" } else { "off" });
+                // Without temporal filtering the renderer keeps no history: it needs one now.
+                if on && !r.renderer.radiance.has_history() {
+                    Self::rebuild(r, options)?;
+                }
             }
             KeyCode::F12 => {
                 r.swapchain.wait_idle()?;
@@ -354,14 +359,25 @@ impl App {
         }
         let (renderer, ctx) = (&r.renderer, &r.ctx);
         let mut timings = Ok(Vec::new());
+        let mut bricks = Ok(());
         let extent = r.swapchain.extent;
         let outcome = r.swapchain.frame(|cmd, image| {
             timings = renderer.timings();
+            bricks = renderer.voxels.bricks.check();
             renderer.update_uniforms();
             renderer.record(cmd);
             gpu::blit_to_present(ctx, cmd, &renderer.targets.ldr, image, extent);
         })?;
         r.renderer.frame_recorded();
+        if let Err(e) = bricks {
+            // A moving volume met more geometry than its pool holds: grow it, and say so.
+            let u = r.renderer.voxels.bricks.usage();
+            let grown = u.needed + (u.needed as f64 * crate::voxel::MOVING_POOL_HEADROOM).ceil() as u32;
+            println!("note: {e}; the pool grows to {grown} bricks");
+            let options = RenderOptions { bricks: Some(grown), ..r.renderer.options };
+            Self::rebuild(r, options)?;
+            r.renderer.options.bricks = None;
+        }
         let timings = timings?;
         if !timings.is_empty() {
             r.last_timings = timings;

@@ -3,7 +3,8 @@
 
 use std::sync::Arc;
 
-use super::{occupancy_of, VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
+use super::bricks::Storage;
+use super::{occupancy_of, VoxelGrid, VoxelizeMethod};
 use crate::error::Result;
 use crate::gpu::{Context, GpuTimer};
 use crate::scene::gpu::SceneGpu;
@@ -16,6 +17,8 @@ pub struct VoxelRun {
     /// GPU time of clearing and voxelizing, milliseconds.
     pub gpu_ms: f64,
     pub notes: Vec<String>,
+    /// Bricks the grid occupies and the pool's slots (sparse storage only).
+    pub bricks: Option<super::bricks::BrickUse>,
 }
 
 impl VoxelRun {
@@ -37,7 +40,7 @@ pub fn voxelize(
     voxelize_in(ctx, scene, method, VoxelGrid::fit(&scene.mesh.bounds, resolution)?, repeats)
 }
 
-/// As [`voxelize`], on a given grid.
+/// As [`voxelize`], on a given grid (default storage).
 pub fn voxelize_in(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -45,9 +48,22 @@ pub fn voxelize_in(
     grid: VoxelGrid,
     repeats: u32,
 ) -> Result<VoxelRun> {
+    voxelize_stored(ctx, scene, method, grid, Storage::default(), None, repeats)
+}
+
+/// As [`voxelize_in`], with the given storage (a sparse pool of `bricks` slots, or sized by
+/// its census).
+pub fn voxelize_stored(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    method: VoxelizeMethod,
+    grid: VoxelGrid,
+    storage: Storage,
+    bricks: Option<u32>,
+    repeats: u32,
+) -> Result<VoxelRun> {
     let scene_gpu = SceneGpu::new(ctx, scene)?;
-    let volume = VoxelVolume::new(ctx, grid)?;
-    let voxelizer = Voxelizer::new(ctx, scene, &scene_gpu, &volume, method)?;
+    let (volume, voxelizer) = super::build(ctx, scene, &scene_gpu, grid, method, storage, bricks, false)?;
     let timer = GpuTimer::new(ctx, 1)?;
     let mut times = Vec::new();
     for _ in 0..repeats.max(1) {
@@ -56,7 +72,14 @@ pub fn voxelize_in(
             timer.span(cmd, "voxelize", || voxelizer.record(cmd, &scene_gpu, &volume));
         })?;
         times.push(timer.read()?[0].ms);
+        volume.bricks.check()?;
     }
     times.sort_by(f64::total_cmp);
-    Ok(VoxelRun { grid, albedo: volume.read_albedo()?, gpu_ms: times[times.len() / 2], notes: voxelizer.notes() })
+    Ok(VoxelRun {
+        grid,
+        albedo: volume.read_albedo()?,
+        gpu_ms: times[times.len() / 2],
+        notes: voxelizer.notes(),
+        bricks: volume.bricks.sparse().then(|| volume.bricks.usage()),
+    })
 }

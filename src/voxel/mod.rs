@@ -3,6 +3,7 @@
 //! features it needs; both write the same [`VoxelVolume`].
 
 pub mod binvox;
+pub mod bricks;
 pub mod grid;
 pub mod headless;
 pub mod occupied;
@@ -154,16 +155,23 @@ pub(crate) fn voxel_set(
             Binding::new(2, vk::DescriptorType::STORAGE_IMAGE, g),
             Binding::new(3, vk::DescriptorType::STORAGE_IMAGE, g),
             Binding::new(4, vk::DescriptorType::STORAGE_BUFFER, g),
+            Binding::new(5, vk::DescriptorType::STORAGE_BUFFER, g),
         ],
     )?;
     let buffer =
         Buffer::from_slice(ctx, "voxel params", vk::BufferUsageFlags::UNIFORM_BUFFER, std::slice::from_ref(params))?;
     set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &buffer);
+    write_volume(&set, volume);
+    Ok((set, ParamsUbo { params: *params, buffer }))
+}
+
+/// Points set 2 at `volume`'s textures, list and page table.
+fn write_volume(set: &DescriptorSet, volume: &VoxelVolume) {
     set.write_storage(1, volume.albedo.view.raw);
     set.write_storage(2, volume.normal.view.raw);
     set.write_storage(3, volume.emission.view.raw);
     set.write_buffer(4, vk::DescriptorType::STORAGE_BUFFER, &volume.occupied.list);
-    Ok((set, ParamsUbo { params: *params, buffer }))
+    set.write_buffer(5, vk::DescriptorType::STORAGE_BUFFER, &volume.bricks.table);
 }
 
 pub(crate) fn params_for(
@@ -224,6 +232,14 @@ impl Voxelizer {
         volume.record_finish(cmd);
     }
 
+    /// Writes into `volume` from now on (same grid and storage; the GPU must be idle).
+    fn rebind(&self, volume: &VoxelVolume) {
+        match self {
+            Voxelizer::Tess(t) => write_volume(&t.set, volume),
+            Voxelizer::Raster(r) => write_volume(&r.set, volume),
+        }
+    }
+
     /// Moves the grid the voxelizer writes (same voxel size and resolution).
     pub fn set_grid(&mut self, grid: &VoxelGrid) {
         match self {
@@ -239,6 +255,46 @@ impl Voxelizer {
             Voxelizer::Raster(_) => Vec::new(),
         }
     }
+}
+
+/// Spare brick slots for a sparse volume that moves with the camera, as a fraction of the
+/// census: the bricks it needs change as it moves, where a fitted grid over a static scene
+/// needs the same bricks every frame.
+pub const MOVING_POOL_HEADROOM: f64 = 0.25;
+
+/// The volume over `grid` and its voxelizer. Sparse storage sizes the pool by a census: one
+/// voxelization into a pool of no slots counts the bricks the scene occupies, and the pool
+/// gets that many slots (plus MOVING_POOL_HEADROOM of them when the grid is `moving`), or
+/// `bricks` slots when given. `Auto` storage is resolved for `moving` first.
+pub fn build(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    scene_gpu: &SceneGpu,
+    grid: VoxelGrid,
+    method: VoxelizeMethod,
+    storage: bricks::Storage,
+    bricks: Option<u32>,
+    moving: bool,
+) -> Result<(VoxelVolume, Voxelizer)> {
+    let storage = storage.resolve(moving);
+    let headroom = if moving { MOVING_POOL_HEADROOM } else { 0.0 };
+    let sized = |n: u32| VoxelVolume::new(ctx, grid, storage, n + 1);
+    if storage == bricks::Storage::Dense {
+        let volume = sized(0)?;
+        let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
+        return Ok((volume, voxelizer));
+    }
+    let census = sized(bricks.unwrap_or(0))?;
+    let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &census, method)?;
+    if bricks.is_some() {
+        return Ok((census, voxelizer));
+    }
+    ctx.submit_and_wait("brick census", |cmd| voxelizer.record(cmd, scene_gpu, &census))?;
+    let needed = census.bricks.usage().needed;
+    let volume = sized(needed + (needed as f64 * headroom).ceil() as u32)?;
+    voxelizer.rebind(&volume);
+    drop(census);
+    Ok((volume, voxelizer))
 }
 
 pub(crate) fn flag(on: bool, bit: u32) -> u32 {

@@ -17,7 +17,7 @@ use crate::scene::gpu::{vertex_layout_untangented, SceneGpu};
 pub struct RasterVoxelizer {
     ctx: Arc<Context>,
     pipeline: Pipeline,
-    set: DescriptorSet,
+    pub(crate) set: DescriptorSet,
     pub(crate) params: ParamsUbo,
     size: u32,
 }
@@ -49,12 +49,13 @@ impl RasterVoxelizer {
             flag(depth_span, config::VOXEL_FLAG_DEPTH_SPAN) | flag(conservative, config::VOXEL_FLAG_CONSERVATIVE);
         let params = params_for(&volume.grid, flags, viewport_scale, 1.0, 1.0);
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
+        let spec = volume.bricks.spec(0);
         let mut desc = GraphicsDesc::new(
             "raster voxelizer",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
                 Stage::new(vk::ShaderStageFlags::GEOMETRY, shaders::VOXELIZE_RASTER_GEOM),
-                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG).spec(&spec),
             ],
         );
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];

@@ -26,7 +26,7 @@ pub const PATCH_LEVEL_BOUND: f32 = 8.0;
 pub struct TessVoxelizer {
     ctx: Arc<Context>,
     pipeline: Pipeline,
-    set: DescriptorSet,
+    pub(crate) set: DescriptorSet,
     pub(crate) params: ParamsUbo,
     /// The scene mesh with over-large triangles split (or as loaded, without subdivision).
     mesh: MeshBuffers,
@@ -59,12 +59,13 @@ impl TessVoxelizer {
         let flags = flag(min_level, config::VOXEL_FLAG_MIN_LEVEL) | flag(neighbours, config::VOXEL_FLAG_NEIGHBOURS);
         let params = params_for(&volume.grid, flags, 1.0, level_scale, max_level);
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
+        let spec = volume.bricks.spec(0);
         let mut desc = GraphicsDesc::new(
             "tess voxelizer",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
                 Stage::new(vk::ShaderStageFlags::TESSELLATION_CONTROL, shaders::VOXELIZE_TESS_TESC),
-                Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE),
+                Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE).spec(&spec),
             ],
         );
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];

@@ -1,11 +1,13 @@
 //! The voxel textures the voxelizers write: albedo+opacity and normal, each RGBA8 packed in an
 //! R32UI 3D storage image (atomic running average, count in the alpha byte), and emitted
-//! radiance (RGB9E5 in R32UI, atomic max). Cleared and rebuilt every frame.
+//! radiance (RGB9E5 in R32UI, atomic max). Cleared and rebuilt every frame. Stored dense or
+//! in a brick pool ([`super::bricks`]).
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::bricks::{Bricks, Storage};
 use super::occupied::OccupiedVoxels;
 use super::VoxelGrid;
 use crate::error::{Error, Result};
@@ -21,6 +23,9 @@ pub struct VoxelVolume {
     pub emission: Image,
     /// Every voxel the voxelizers wrote, each once (appended on its first write).
     pub occupied: OccupiedVoxels,
+    /// Where each voxel is stored (every per-voxel texture, these and the radiance volume's
+    /// injected light and lit side, shares the layout).
+    pub bricks: Bricks,
 }
 
 /// Stages and accesses of the voxelizers' writes, for barriers.
@@ -34,10 +39,10 @@ pub fn voxel_write_scope() -> (vk::PipelineStageFlags2, vk::AccessFlags2) {
 /// The three voxel textures, in the order [`VoxelVolume::images`] gives them.
 pub const VOXEL_TEXTURES: [&str; 3] = ["voxel albedo", "voxel normal", "voxel emission"];
 
-/// Each voxel texture's image over `grid`.
-pub fn voxel_desc(grid: &VoxelGrid) -> ImageDesc {
+/// Each voxel texture's image, of `extent` texels (the grid's, or a brick pool's).
+pub fn voxel_desc(extent: vk::Extent3D) -> ImageDesc {
     let usage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
-    ImageDesc::d3_extent(VOXEL_FORMAT, extent_of(grid.dims), usage)
+    ImageDesc::d3_extent(VOXEL_FORMAT, extent, usage)
 }
 
 /// The image extent of a grid's dims.
@@ -74,8 +79,11 @@ pub fn check_fits(ctx: &Context, grid: &VoxelGrid, need: u64) -> Result<()> {
 }
 
 impl VoxelVolume {
-    pub fn new(ctx: &Arc<Context>, grid: VoxelGrid) -> Result<Self> {
-        let desc = voxel_desc(&grid);
+    /// The textures over `grid`, dense or in a pool of `capacity` brick slots (the empty slot
+    /// included).
+    pub fn new(ctx: &Arc<Context>, grid: VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
+        let bricks = Bricks::new(ctx, &grid, storage, capacity)?;
+        let desc = voxel_desc(bricks.extent(&grid));
         check_fits(ctx, &grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
         let [a, n, e] = VOXEL_TEXTURES;
         Ok(VoxelVolume {
@@ -84,7 +92,8 @@ impl VoxelVolume {
             albedo: Image::new(ctx, a, desc)?,
             normal: Image::new(ctx, n, desc)?,
             emission: Image::new(ctx, e, desc)?,
-            occupied: OccupiedVoxels::new(ctx, grid.voxel_count() as u64)?,
+            occupied: OccupiedVoxels::new(ctx, bricks.voxel_room(&grid))?,
+            bricks,
         })
     }
 
@@ -96,6 +105,7 @@ impl VoxelVolume {
             gpu::clear_to_general(ctx, cmd, img, scope::ANY);
         }
         self.occupied.record_reset(cmd);
+        self.bricks.record_reset(cmd);
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, voxel_write_scope());
         gpu::memory_barrier(ctx, cmd, scope::TRANSFER_WRITE, voxel_write_scope());
     }
@@ -111,17 +121,28 @@ impl VoxelVolume {
         );
         gpu::memory_barrier(&self.ctx, cmd, voxel_write_scope(), after);
         self.occupied.record_args(cmd);
+        self.bricks.record_readback(cmd);
+    }
+
+    /// Reads back a per-voxel texture stored in this volume's layout (a voxel texture, or the
+    /// radiance volume's injected light or lit side) as the dense grid, x fastest.
+    pub fn read_dense(&self, image: &Image) -> Result<Vec<u8>> {
+        let bytes = gpu::read_image(&self.ctx, image, vk::ImageLayout::GENERAL, 0)?;
+        if !self.bricks.sparse() {
+            return Ok(bytes);
+        }
+        let texel = crate::gpu::image::texel_size(image.desc.format) as usize;
+        let pages = self.bricks.read_pages()?;
+        Ok(super::bricks::scatter(&self.grid, &pages, image.desc.extent, &bytes, texel))
     }
 
     /// Reads back the packed albedo texture (RGBA8 per voxel; alpha = sample count, 0 = empty).
     pub fn read_albedo(&self) -> Result<Vec<u32>> {
-        let bytes = gpu::read_image(&self.ctx, &self.albedo, vk::ImageLayout::GENERAL, 0)?;
-        Ok(bytemuck::cast_slice(&bytes).to_vec())
+        Ok(bytemuck::pod_collect_to_vec(&self.read_dense(&self.albedo)?))
     }
 
     pub fn read_normal(&self) -> Result<Vec<u32>> {
-        let bytes = gpu::read_image(&self.ctx, &self.normal, vk::ImageLayout::GENERAL, 0)?;
-        Ok(bytemuck::cast_slice(&bytes).to_vec())
+        Ok(bytemuck::pod_collect_to_vec(&self.read_dense(&self.normal)?))
     }
 
     /// The textures, for the memory report.

@@ -107,3 +107,19 @@ pub fn horizontal_square(y: f32, half: f32, up: bool) -> [[Vec3; 3]; 2] {
         [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
     }
 }
+
+/// A long, low hall open to the sky: a floor 8 m along x and 2 m deep, a back wall 1.2 m high
+/// and three boxes, one slanted. Lit by the default sun, which reaches the floor and the boxes'
+/// tops and bounces light onto the wall.
+pub fn hall() -> Scene {
+    let mut tris = box_triangles(Vec3::new(-4.0, -0.1, -1.0), Vec3::new(4.0, 0.0, 1.0));
+    let wall = box_triangles(Vec3::new(-4.0, 0.0, -1.0), Vec3::new(4.0, 1.2, -0.9));
+    tris.extend(wall.into_iter().map(|(t, _)| (t, 1)));
+    for (x, h) in [(-2.5f32, 0.6f32), (0.0, 0.9), (2.5, 0.4)] {
+        tris.extend(box_triangles(Vec3::new(x - 0.3, 0.0, -0.4), Vec3::new(x + 0.3, h, 0.2)));
+    }
+    // A slanted panel: its voxels cross layers within a pixel column.
+    let p = [Vec3::new(-1.2, 0.05, 0.5), Vec3::new(-0.4, 0.7, 0.3), Vec3::new(-0.3, 0.1, 0.8)];
+    tris.push((p, 2));
+    Scene::from_triangles(&tris, &[Vec3::splat(0.75), Vec3::new(0.8, 0.3, 0.2), Vec3::new(0.2, 0.7, 0.3)])
+}

@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand};
 
 use vct::render::View;
 use vct::scene::Scene;
+use vct::voxel::bricks::Storage;
 use vct::voxel::{Coverage, VoxelizeMethod};
 
 use crate::load_scene;
@@ -88,6 +89,10 @@ pub struct BenchArgs {
     /// Voxel resolutions, e.g. 64,128,256.
     #[arg(long, value_delimiter = ',')]
     pub res: Option<Vec<u32>>,
+    /// Also run the default voxelizer with dense storage, and chart memory and frame time
+    /// against FLIP per storage mode (on|off).
+    #[arg(long, value_enum, default_value = "on")]
+    pub compare_storage: OnOff,
     /// Indirect light against the path tracer instead of the voxelizer sweep: FLIP, mean radiance
     /// and per-region indirect light of the default model (the embedded Cornell box under its spot
     /// and its directional light, plus the scenes given).
@@ -350,9 +355,33 @@ pub struct MethodArgs {
     /// Rasterized path: write only the voxel at each pixel centre's depth (the thesis' method).
     #[arg(long)]
     pub no_depth_span: bool,
+    /// Where the per-voxel textures live: a page table and a pool of the occupied 2³ bricks
+    /// (sparse), or the whole grid (dense). auto: sparse (Vulkan sparse residency is not built
+    /// yet, docs/benchmarks.md "Sparse storage").
+    #[arg(long, value_enum, default_value = "auto")]
+    pub storage: StorageArg,
+    /// Sparse storage: brick slots in the pool (default: as many as a census of the scene
+    /// counts; fewer is an error naming both counts).
+    #[arg(long, value_name = "BRICKS", value_parser = clap::value_parser!(u32).range(1..=1 << 26))]
+    pub bricks: Option<u32>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum StorageArg {
+    Auto,
+    Sparse,
+    Dense,
 }
 
 impl MethodArgs {
+    pub fn storage(&self) -> Storage {
+        match self.storage {
+            StorageArg::Auto => Storage::Auto,
+            StorageArg::Sparse => Storage::Sparse,
+            StorageArg::Dense => Storage::Dense,
+        }
+    }
+
     pub fn method(&self) -> Result<VoxelizeMethod> {
         if !(self.level_scale.is_finite() && self.level_scale > 0.0 && self.level_scale <= 16.0) {
             bail!("--level-scale must be in (0, 16], got {}", self.level_scale);

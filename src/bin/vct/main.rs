@@ -68,6 +68,8 @@ fn render(args: RenderArgs) -> Result<()> {
         follow: args.scene.follow(),
         inject_texels: args.scene.inject_texels,
         work: args.scene.work.work(),
+        storage: args.scene.method.storage(),
+        bricks: args.scene.method.bricks,
     };
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
@@ -118,13 +120,33 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     let res = args.method.res.unwrap_or(scene.settings.voxel_resolution);
     let grid = VoxelGrid::choose(&scene.mesh.bounds, res, args.method.dims)?;
     let ctx = open_device(&args.gpu)?;
-    let run = headless::voxelize_in(&ctx, &scene, method, grid, 3).context("voxelizing")?;
+    let storage = args.method.storage();
+    let run =
+        headless::voxelize_stored(&ctx, &scene, method, grid, storage, args.method.bricks, 3).context("voxelizing")?;
     for n in &run.notes {
         println!("{n}");
     }
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
-    println!("{}", vct::render::memory::MemoryReport::for_grid(&g, scene.settings.gi.bounces > 1, true));
+    let pool = run.bricks.map(|b| b.capacity + 1);
+    println!("storage: {}", storage.label());
+    let layout = vct::render::memory::Layout {
+        bounces: scene.settings.gi.bounces > 1,
+        listed: true,
+        pool,
+        temporal: scene.settings.gi.temporal < 1.0,
+    };
+    println!("{}", vct::render::memory::MemoryReport::for_grid(&g, &layout));
+    if let Some(b) = run.bricks {
+        let all = vct::voxel::bricks::brick_count(&g).element_product();
+        println!(
+            "bricks of {s}³: {} of {all} occupied ({:.1}%), pool of {} slots",
+            b.needed,
+            100.0 * b.needed as f64 / all as f64,
+            b.capacity,
+            s = vct::config::BRICK_SIZE
+        );
+    }
     let occupied = run.occupied();
     println!("occupied voxels: {}", occupied.iter().filter(|&&o| o).count());
     println!("voxelize GPU time: {:.3} ms (median of 3)", run.gpu_ms);
@@ -159,6 +181,8 @@ fn view(args: ViewArgs) -> Result<()> {
             follow: args.scene.follow(),
             inject_texels: args.scene.inject_texels,
             work: args.scene.work.work(),
+            storage: args.scene.method.storage(),
+            bricks: args.scene.method.bricks,
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,
@@ -361,6 +385,11 @@ fn bench(args: BenchArgs) -> Result<()> {
         subdivisions: if args.quick { 2 } else { 4 },
         out_dir: out.clone(),
         cache_dir: out.parent().unwrap_or(Path::new(".")).join("cache"),
+        compare_storage: if args.compare_storage == OnOff::On {
+            vec![vct::voxel::bricks::Storage::Dense]
+        } else {
+            vec![]
+        },
     };
     for &r in &opts.resolutions {
         vct::voxel::VoxelGrid::fit(&vct::scene::Aabb { min: glam::Vec3::ZERO, max: glam::Vec3::ONE }, r)?;

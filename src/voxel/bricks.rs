@@ -1,0 +1,307 @@
+//! Sparse voxel storage: a page table over the grid's bricks and a pool of brick slots
+//! (GigaVoxels' brick pool, Crassin 2011 §4; the software path of the GRAPP 2020 sparse-texture
+//! paper). The per-voxel textures (the voxel albedo, normal and emission, the injected radiance
+//! and lit side, the bounce target) become pool atlases: a voxel lives in its brick's slot, and
+//! a voxel outside every brick reads the empty slot 0. The voxelizers claim a brick's slot on
+//! the first write into it (`shaders-glsl/common/bricks.glsl`), so the pool holds exactly the
+//! bricks that hold an occupied voxel. Its capacity comes from a census: one voxelization into
+//! a pool of no slots counts the bricks the scene needs (`voxel::build`). A frame that needs more
+//! than the pool holds is an error naming both counts, never silent holes ([`Bricks::check`]).
+//!
+//! Dense storage (`--storage dense`) keeps every texture at the grid's extent; the shaders then
+//! skip the table (specialization constant `SPARSE`).
+
+use std::sync::Arc;
+
+use ash::vk;
+use glam::UVec3;
+use gpu_allocator::MemoryLocation;
+
+use super::VoxelGrid;
+use crate::config::{BRICK_REFUSED, BRICK_SHIFT, BRICK_SIZE};
+use crate::error::{Error, Result};
+use crate::gpu::{self, scope, Buffer, Context};
+
+/// Where the per-voxel textures live.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub enum Storage {
+    /// Sparse for a grid fitted to the scene; dense for a volume that moves with the camera,
+    /// whose occupancy no census made at its first place bounds.
+    #[default]
+    Auto,
+    /// Every texture over the whole grid.
+    Dense,
+    /// A page table and a pool of the occupied bricks (smaller on every scene measured,
+    /// docs/benchmarks.md "Sparse storage").
+    Sparse,
+}
+
+impl Storage {
+    /// What `Auto` means for a grid that moves or not.
+    pub fn resolve(self, moving: bool) -> Storage {
+        match self {
+            Storage::Auto if moving => Storage::Dense,
+            Storage::Auto => Storage::Sparse,
+            s => s,
+        }
+    }
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Storage::Auto => "auto",
+            Storage::Dense => "dense",
+            Storage::Sparse => "sparse",
+        }
+    }
+}
+
+/// Bytes of the table's header (`Bricks` in bricks.glsl: eight uints).
+const HEADER_WORDS: usize = 8;
+const HEADER: u64 = 4 * HEADER_WORDS as u64;
+
+/// Bricks along each axis of `grid`.
+pub fn brick_count(grid: &VoxelGrid) -> UVec3 {
+    (grid.dims + UVec3::splat(BRICK_SIZE - 1)) >> BRICK_SHIFT
+}
+
+/// Bytes of the page table over `grid`.
+pub fn table_bytes(grid: &VoxelGrid) -> u64 {
+    HEADER + 4 * brick_count(grid).as_u64vec3().element_product()
+}
+
+/// The pool's slots along x, y, z for `capacity` slots (the empty one included): as near a
+/// cube as whole layers allow.
+pub fn pool_slots(capacity: u32) -> UVec3 {
+    let c = capacity.max(1);
+    let side = (c as f64).cbrt().ceil() as u32;
+    let z = c.div_ceil(side * side);
+    UVec3::new(side, side, z)
+}
+
+/// The voxels `capacity` slots (the empty one included) hold, at most the grid's.
+pub fn voxel_room(grid: &VoxelGrid, capacity: u32) -> u64 {
+    (capacity.saturating_sub(1) as u64 * (BRICK_SIZE as u64).pow(3)).min(grid.voxel_count() as u64)
+}
+
+/// The pool atlases' extent in texels for `capacity` slots.
+pub fn pool_extent(capacity: u32) -> vk::Extent3D {
+    let s = pool_slots(capacity) * BRICK_SIZE;
+    vk::Extent3D { width: s.x, height: s.y, depth: s.z }
+}
+
+/// What the last voxelization asked of the pool.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct BrickUse {
+    /// Bricks that hold an occupied voxel (given a slot or refused).
+    pub needed: u32,
+    /// Slots for bricks (the empty slot not counted).
+    pub capacity: u32,
+    /// Claims that gave up waiting for another invocation's (never seen; an error if it happens).
+    pub stalled: u32,
+}
+
+/// The page table, its header's read-back, and the pool's shape.
+pub struct Bricks {
+    ctx: Arc<Context>,
+    pub storage: Storage,
+    /// Header (next slot, capacity, pool shape, brick counts) and one entry per brick.
+    pub table: Buffer,
+    readback: Buffer,
+    header: [u32; HEADER_WORDS],
+    /// Bricks along each axis of the grid.
+    pub count: UVec3,
+    /// Slots in the pool, the empty slot 0 included (0 when dense).
+    pub capacity: u32,
+}
+
+impl Bricks {
+    /// A table over `grid` for a pool of `capacity` slots (the empty one included); dense
+    /// storage keeps a header-only table, bound but never read.
+    pub fn new(ctx: &Arc<Context>, grid: &VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
+        let storage = storage.resolve(false);
+        let (count, capacity) = match storage {
+            Storage::Dense => (UVec3::ZERO, 0),
+            Storage::Sparse | Storage::Auto => (brick_count(grid), capacity.max(1)),
+        };
+        let slots = pool_slots(capacity);
+        let limit = ctx.info.limits.max_image_dimension3_d / BRICK_SIZE;
+        if storage == Storage::Sparse && slots.max_element() > limit {
+            return Err(Error::param(
+                "bricks",
+                format!(
+                    "a pool of {capacity} bricks needs {} slots along an axis; the device's 3D images hold {limit}",
+                    slots.max_element()
+                ),
+            ));
+        }
+        let bytes = HEADER + 4 * count.as_u64vec3().element_product();
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER
+            | vk::BufferUsageFlags::TRANSFER_DST
+            | vk::BufferUsageFlags::TRANSFER_SRC;
+        let table = Buffer::new(ctx, "brick page table", bytes, usage, MemoryLocation::GpuOnly)?;
+        let readback =
+            Buffer::new(ctx, "brick count", HEADER, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
+        let header = [1, capacity, slots.x, slots.y, count.x, count.y, count.z, 0];
+        // Until the first voxelization is read back: no brick needed yet.
+        readback.write(0, bytemuck::cast_slice(&header));
+        Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity })
+    }
+
+    pub fn sparse(&self) -> bool {
+        self.storage == Storage::Sparse
+    }
+
+    /// Specialization constants for a shader that includes bricks.glsl: its own constant 0
+    /// (`first`), then SPARSE (constant 1).
+    pub fn spec(&self, first: u32) -> [u32; 2] {
+        [first, self.sparse() as u32]
+    }
+
+    /// The most voxels this layout can hold: the grid's, or the pool's slots' (each
+    /// occupied voxel lies in a brick with a slot, so the occupied list needs no more room).
+    pub fn voxel_room(&self, grid: &VoxelGrid) -> u64 {
+        match self.storage {
+            Storage::Dense => grid.voxel_count() as u64,
+            Storage::Sparse | Storage::Auto => voxel_room(grid, self.capacity),
+        }
+    }
+
+    /// The extent of every per-voxel texture: the grid's when dense, the pool's when sparse.
+    pub fn extent(&self, grid: &VoxelGrid) -> vk::Extent3D {
+        match self.storage {
+            Storage::Dense => super::volume::extent_of(grid.dims),
+            Storage::Sparse | Storage::Auto => pool_extent(self.capacity),
+        }
+    }
+
+    /// Empties the table (no brick has a slot; the next one given out is 1), before the
+    /// voxelizers claim.
+    pub fn record_reset(&self, cmd: vk::CommandBuffer) {
+        let ctx = &self.ctx;
+        gpu::memory_barrier(ctx, cmd, scope::ANY, scope::TRANSFER_WRITE);
+        gpu::update_buffer(ctx, cmd, &self.table, bytemuck::cast_slice(&self.header));
+        if self.sparse() {
+            gpu::fill_buffer_at(ctx, cmd, &self.table, HEADER, vk::WHOLE_SIZE, 0);
+        }
+    }
+
+    /// Copies the header to the host after the voxelizers' writes (made visible to transfers
+    /// by the caller's barrier), for [`Bricks::check`].
+    pub fn record_readback(&self, cmd: vk::CommandBuffer) {
+        gpu::memory_barrier(
+            &self.ctx,
+            cmd,
+            (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_WRITE),
+            scope::TRANSFER_READ,
+        );
+        gpu::copy_buffer(&self.ctx, cmd, &self.table, &self.readback, HEADER);
+        gpu::memory_barrier(&self.ctx, cmd, scope::TRANSFER_WRITE, scope::HOST_READ);
+    }
+
+    /// The pool's use in the last finished voxelization (sparse storage only).
+    pub fn usage(&self) -> BrickUse {
+        let h: &[u32] = bytemuck::cast_slice(&self.readback.read()[..HEADER as usize]);
+        BrickUse { needed: h[0].saturating_sub(1), capacity: self.capacity.saturating_sub(1), stalled: h[7] }
+    }
+
+    /// An error when the last finished voxelization needed more bricks than the pool holds
+    /// (its image then misses the refused bricks), or a claim gave up.
+    pub fn check(&self) -> Result<()> {
+        if !self.sparse() {
+            return Ok(());
+        }
+        let u = self.usage();
+        if u.needed > u.capacity {
+            return Err(Error::param(
+                "bricks",
+                format!(
+                    "the brick pool is full: the grid needs {} bricks of {BRICK_SIZE}³ voxels, the pool holds {} (raise --bricks, or leave it to the census)",
+                    u.needed, u.capacity
+                ),
+            ));
+        }
+        if u.stalled > 0 {
+            return Err(Error::param("bricks", format!("{} brick claims gave up waiting", u.stalled)));
+        }
+        Ok(())
+    }
+
+    /// The page table's entries (after all submitted work): 0 none, else the brick's slot.
+    pub fn read_pages(&self) -> Result<Vec<u32>> {
+        let bytes = gpu::read_buffer(&self.ctx, &self.table)?;
+        Ok(bytemuck::cast_slice(&bytes[HEADER as usize..]).to_vec())
+    }
+}
+
+/// A pooled texture read back (`texel` bytes a texel, x fastest over `pool` texels) as the
+/// dense grid it stores: each brick's voxels from its slot, zero where no brick has a slot.
+pub fn scatter(grid: &VoxelGrid, pages: &[u32], pool: vk::Extent3D, pooled: &[u8], texel: usize) -> Vec<u8> {
+    let count = brick_count(grid);
+    let slots = UVec3::new(pool.width, pool.height, pool.depth) / BRICK_SIZE;
+    let d = grid.dims;
+    let mut dense = vec![0u8; d.as_u64vec3().element_product() as usize * texel];
+    for (i, &s) in pages.iter().enumerate() {
+        if s == 0 || s >= BRICK_REFUSED {
+            continue;
+        }
+        let i = i as u32;
+        let b = UVec3::new(i % count.x, (i / count.x) % count.y, i / (count.x * count.y)) * BRICK_SIZE;
+        let o = UVec3::new(s % slots.x, (s / slots.x) % slots.y, s / (slots.x * slots.y)) * BRICK_SIZE;
+        for z in 0..BRICK_SIZE {
+            for y in 0..BRICK_SIZE {
+                for x in 0..BRICK_SIZE {
+                    let v = b + UVec3::new(x, y, z);
+                    if v.cmpge(d).any() {
+                        continue;
+                    }
+                    let p = o + UVec3::new(x, y, z);
+                    let src = ((p.z * pool.height + p.y) * pool.width + p.x) as usize * texel;
+                    let dst = ((v.z * d.y + v.y) * d.x + v.x) as usize * texel;
+                    dense[dst..dst + texel].copy_from_slice(&pooled[src..src + texel]);
+                }
+            }
+        }
+    }
+    dense
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pool_holds_its_capacity_in_near_cubic_layers() {
+        for c in [1u32, 2, 7, 8, 9, 1000, 25126, 101845] {
+            let s = pool_slots(c);
+            assert!(s.x * s.y * s.z >= c, "{c}: {s}");
+            assert!(s.x * s.y * (s.z - 1) < c, "{c}: a whole empty layer in {s}");
+        }
+    }
+
+    #[test]
+    fn scatter_places_each_brick_voxel_at_its_grid_coordinate() {
+        let grid = VoxelGrid { origin: glam::Vec3::ZERO, voxel: 1.0, dims: UVec3::new(4, 2, 2) };
+        // Bricks (2, 1, 1); brick 1 (x 2..4) in slot 1, brick 0 empty.
+        let pool = pool_extent(2);
+        let slots = pool_slots(2);
+        let mut pooled = vec![0u8; (pool.width * pool.height * pool.depth) as usize];
+        let o = UVec3::new(1 % slots.x, (1 / slots.x) % slots.y, 1 / (slots.x * slots.y)) * BRICK_SIZE;
+        for z in 0..2 {
+            for y in 0..2 {
+                for x in 0..2 {
+                    let p = o + UVec3::new(x, y, z);
+                    pooled[((p.z * pool.height + p.y) * pool.width + p.x) as usize] = (1 + x + 2 * y + 4 * z) as u8;
+                }
+            }
+        }
+        let dense = scatter(&grid, &[0, 1], pool, &pooled, 1);
+        for z in 0..2u32 {
+            for y in 0..2u32 {
+                for x in 0..4u32 {
+                    let want = if x < 2 { 0 } else { (1 + (x - 2) + 2 * y + 4 * z) as u8 };
+                    assert_eq!(dense[((z * 2 + y) * 4 + x) as usize], want, "voxel {x},{y},{z}");
+                }
+            }
+        }
+    }
+}
