@@ -216,3 +216,37 @@ fn mips_over_occupied_texels_equal_the_dense_filter() {
     }
     common::assert_clean(&ctx);
 }
+
+#[test]
+fn res_auto_picks_a_smaller_grid_for_a_looser_target() {
+    use vct::bench::auto::{choose, from_size};
+    let ctx = common::context();
+    let mut scene = Scene::embedded_default().unwrap();
+    scene.set_size(Some(64), Some(64)).unwrap();
+    let cache = std::env::temp_dir().join(format!("vct-auto-{}", std::process::id()));
+    let o = RenderOptions::default();
+    let n = [16, 32, 64];
+    let pick = |target| choose(&ctx, &scene, "cornell-auto", o, &n, Some(target), 16, &cache, &|_| {}).unwrap();
+    // A target no grid meets: every one is tried, and the closest is chosen and said so.
+    let all = pick(1e-6);
+    println!("{all}");
+    assert!(!all.met && all.tried.len() == 3 && all.reason.contains("no grid meets"));
+    let flips: Vec<f32> = all.tried.iter().map(|t| t.flip).collect();
+    assert!(all.tried.windows(2).all(|w| w[0].memory_mib < w[1].memory_mib), "memory grows with the grid");
+    // The coarsest grid is the least accurate here (else the search would have nothing to buy).
+    let best = flips.iter().cloned().fold(f32::INFINITY, f32::min);
+    assert!(flips[0] > best + 0.005, "16³ is as good as the finest: {flips:?}");
+    // A loose target takes the coarsest grid; one at the best FLIP (plus the run-to-run
+    // spread) a finer one.
+    let loose = pick(flips.iter().cloned().fold(0.0, f32::max) + 0.01);
+    assert!(loose.met && loose.resolution == 16 && loose.tried.len() == 1, "{loose}");
+    let tight = pick(best + 0.002);
+    println!("{tight}");
+    assert!(tight.met && tight.resolution > loose.resolution, "{tight}");
+    // Without a target: from the scene's size (5.5 m at 8 voxels a metre: 64), unmeasured.
+    let sized = choose(&ctx, &scene, "cornell-auto", o, &n, None, 16, &cache, &|_| {}).unwrap();
+    assert_eq!((sized.resolution, sized.met, sized.tried.len()), (from_size(&scene), false, 0));
+    assert_eq!(sized.resolution, 64);
+    common::assert_clean(&ctx);
+    let _ = std::fs::remove_dir_all(&cache);
+}

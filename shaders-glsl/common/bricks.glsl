@@ -22,8 +22,8 @@ layout(set = BRICKS_SET, binding = BRICKS_BINDING, std430)
     buffer Bricks {
     uint next;       // the next slot to give out (1 after the clear; slot 0 is the empty brick)
     uint capacity;   // slots in the pool, the empty one included
-    uint pool_x;     // the pool atlas, in slots, along x
-    uint pool_y;     // and along y
+    uint pool_x;     // log2 of the pool atlas' slots along x (powers of two: a slot's place is
+    uint pool_y;     // shifts and masks, not the integer divisions a CPU driver runs lane by lane)
     uint count_x;    // bricks along each axis of the grid
     uint count_y;
     uint count_z;
@@ -38,7 +38,8 @@ uint brick_index(ivec3 v) {
 
 // Where slot `s` holds voxel `v` of its brick.
 ivec3 slot_texel(uint s, ivec3 v) {
-    uvec3 o = uvec3(s % bricks.pool_x, (s / bricks.pool_x) % bricks.pool_y, s / (bricks.pool_x * bricks.pool_y));
+    uint x = bricks.pool_x, y = bricks.pool_y;
+    uvec3 o = uvec3(s & ((1u << x) - 1u), (s >> x) & ((1u << y) - 1u), s >> (x + y));
     return ivec3(o << BRICK_SHIFT) + (v & ivec3(BRICK_SIZE - 1));
 }
 

@@ -65,6 +65,11 @@
 #define BRICK_REFUSED 0xFFFFFFFEu
 #define BRICK_CLAIM_ITERATIONS 1024
 
+// `--res auto` without a target (bench::auto): voxels a metre along the scene's longest axis.
+// 12.5 cm voxels: the Cornell box (5.5 m) gets 64, where its FLIP against the path tracer is
+// already what 256³ gives (docs/benchmarks.md, "Resolution"); Sponza (34.8 m) the largest, 256.
+#define AUTO_VOXELS_PER_METRE 8.0
+
 // Global illumination (Freed 2018 §4.3-4.5).
 // Diffuse cones: the largest cone set (render::cones), each cone a direction in the surface's
 // tangent frame, a weight and an aperture.

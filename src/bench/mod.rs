@@ -5,6 +5,7 @@
 //! `results.csv`, `results.json` and the charts of [`charts`].
 
 pub mod accuracy;
+pub mod auto;
 pub mod charts;
 pub mod hostile;
 pub mod occupancy;

@@ -69,13 +69,18 @@ pub fn table_bytes(grid: &VoxelGrid) -> u64 {
     HEADER + 4 * brick_count(grid).as_u64vec3().element_product()
 }
 
-/// The pool's slots along x, y, z for `capacity` slots (the empty one included): as near a
-/// cube as whole layers allow.
+/// The pool's slots along x, y, z for `capacity` slots (the empty one included): layers whose
+/// sides are powers of two (bricks.glsl finds a slot by shifts), x = y or 2y, as many layers
+/// as the capacity needs but no more than 2x; of those, the fewest slots (within ~2.5% of the
+/// capacity from a few hundred up), then the most cubic.
 pub fn pool_slots(capacity: u32) -> UVec3 {
-    let c = capacity.max(1);
-    let side = (c as f64).cbrt().ceil() as u32;
-    let z = c.div_ceil(side * side);
-    UVec3::new(side, side, z)
+    let c = capacity.max(1) as u64;
+    (0..=12u32)
+        .flat_map(|a| [(a, a), (a + 1, a)])
+        .map(|(a, b)| UVec3::new(1 << a, 1 << b, c.div_ceil(1 << (a + b)) as u32))
+        .filter(|s| s.z <= 2 * s.x)
+        .min_by_key(|s| (s.as_u64vec3().element_product(), s.max_element()))
+        .expect("candidate layouts")
 }
 
 /// The voxels `capacity` slots (the empty one included) hold, at most the grid's.
@@ -141,7 +146,7 @@ impl Bricks {
         let table = Buffer::new(ctx, "brick page table", bytes, usage, MemoryLocation::GpuOnly)?;
         let readback =
             Buffer::new(ctx, "brick count", HEADER, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
-        let header = [1, capacity, slots.x, slots.y, count.x, count.y, count.z, 0];
+        let header = [1, capacity, slots.x.trailing_zeros(), slots.y.trailing_zeros(), count.x, count.y, count.z, 0];
         // Until the first voxelization is read back: no brick needed yet.
         readback.write(0, bytemuck::cast_slice(&header));
         Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity })
@@ -275,6 +280,8 @@ mod tests {
             let s = pool_slots(c);
             assert!(s.x * s.y * s.z >= c, "{c}: {s}");
             assert!(s.x * s.y * (s.z - 1) < c, "{c}: a whole empty layer in {s}");
+            assert!(s.x.is_power_of_two() && s.y.is_power_of_two() && s.x >= s.y, "{c}: {s}");
+            assert!((s.x * s.y * s.z) as f64 <= c as f64 * 1.05 + 64.0, "{c}: {s} wastes slots");
         }
     }
 

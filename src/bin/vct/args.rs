@@ -329,9 +329,11 @@ pub struct MethodArgs {
     #[arg(long, value_enum, default_value = "conservative")]
     pub coverage: CoverageArg,
     /// Voxels along the scene's longest axis (a power of two, 16..512); the other axes are
-    /// fitted to the scene's shape. Default: the scene's.
-    #[arg(long)]
-    pub res: Option<u32>,
+    /// fitted to the scene's shape. Default: the scene's. `vct render` also takes `auto`: the
+    /// cheapest grid that meets --target-flip against the path-traced reference, or without a
+    /// target one from the scene's size.
+    #[arg(long, value_parser = parse_res)]
+    pub res: Option<ResArg>,
     /// Voxels along x, y and z (powers of two, 16..512), e.g. 256,128,128 (256,256,256: the
     /// bounding cube); overrides --res.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_dims)]
@@ -373,7 +375,29 @@ pub enum StorageArg {
     Dense,
 }
 
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ResArg {
+    Voxels(u32),
+    Auto,
+}
+
+fn parse_res(s: &str) -> std::result::Result<ResArg, String> {
+    if s == "auto" {
+        return Ok(ResArg::Auto);
+    }
+    s.parse().map(ResArg::Voxels).map_err(|_| format!("'{s}' is neither a voxel count nor 'auto'"))
+}
+
 impl MethodArgs {
+    /// The voxel count of --res (`auto` is for `vct render`).
+    pub fn res(&self) -> Result<Option<u32>> {
+        match self.res {
+            None => Ok(None),
+            Some(ResArg::Voxels(n)) => Ok(Some(n)),
+            Some(ResArg::Auto) => bail!("--res auto is for vct render"),
+        }
+    }
+
     pub fn storage(&self) -> Storage {
         match self.storage {
             StorageArg::Auto => Storage::Auto,
@@ -461,6 +485,16 @@ pub struct RenderArgs {
     /// Render this many frames and report each pass's median GPU time (the last frame is saved).
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
+    /// With --res auto: the largest FLIP against the path-traced reference the grid may give
+    /// (0..1).
+    #[arg(long, value_name = "F")]
+    pub target_flip: Option<f32>,
+    /// With --res auto and a target: samples a pixel of the reference (cached in --cache).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub spp: u32,
+    /// Where path-traced references are cached (shared with `vct bench`).
+    #[arg(long, default_value = "bench/cache")]
+    pub cache: PathBuf,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }

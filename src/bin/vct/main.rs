@@ -52,15 +52,27 @@ fn print_timings(timings: &[Timing]) {
 }
 
 fn render(args: RenderArgs) -> Result<()> {
+    let auto = args.scene.method.res == Some(ResArg::Auto);
+    if let Some(f) = args.target_flip {
+        if !auto {
+            bail!("--target-flip goes with --res auto");
+        }
+        if !(f.is_finite() && f > 0.0 && f < 1.0) {
+            bail!("--target-flip must be in (0, 1), got {f}");
+        }
+    }
+    if auto && args.scene.method.dims.is_some() {
+        bail!("--res auto chooses the grid: give it without --dims");
+    }
     let scene = args.scene.load()?;
     let ctx = open_device(&args.gpu)?;
     let tracing = match args.tracing {
         TracingArg::Forward => Tracing::Forward,
         TracingArg::Deferred => Tracing::Deferred,
     };
-    let options = RenderOptions {
+    let mut options = RenderOptions {
         method: args.scene.method.method()?,
-        resolution: args.scene.method.res,
+        resolution: if auto { None } else { args.scene.method.res()? },
         dims: args.scene.method.dims,
         view: args.view,
         gi: !args.no_gi,
@@ -71,6 +83,30 @@ fn render(args: RenderArgs) -> Result<()> {
         storage: args.scene.method.storage(),
         bricks: args.scene.method.bricks,
     };
+    let mut choice = None;
+    if auto {
+        let name = args
+            .scene
+            .scene
+            .as_deref()
+            .and_then(|p| p.file_stem())
+            .map_or("cornell".into(), |s| s.to_string_lossy().into_owned());
+        let c = vct::bench::auto::choose(
+            &ctx,
+            &scene,
+            &name,
+            options,
+            &vct::bench::auto::CANDIDATES,
+            args.target_flip,
+            args.spp,
+            &args.cache,
+            &|m| eprintln!("{m}"),
+        )
+        .context("choosing the resolution (--res auto)")?;
+        println!("{c}");
+        options.resolution = Some(c.resolution);
+        choice = Some(c);
+    }
     let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
         println!("note: {n}");
@@ -99,6 +135,8 @@ fn render(args: RenderArgs) -> Result<()> {
             "height": frame.height,
             "passes": timings,
             "memory": memory,
+            "storage": renderer.voxels.bricks.storage.label(),
+            "auto": choice,
         });
         std::fs::write(path, serde_json::to_string_pretty(&json)?)
             .with_context(|| format!("writing {}", path.display()))?;
@@ -117,7 +155,7 @@ fn render(args: RenderArgs) -> Result<()> {
 fn voxelize(args: VoxelizeArgs) -> Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let method = args.method.method()?;
-    let res = args.method.res.unwrap_or(scene.settings.voxel_resolution);
+    let res = args.method.res()?.unwrap_or(scene.settings.voxel_resolution);
     let grid = VoxelGrid::choose(&scene.mesh.bounds, res, args.method.dims)?;
     let ctx = open_device(&args.gpu)?;
     let storage = args.method.storage();
@@ -176,7 +214,7 @@ fn view(args: ViewArgs) -> Result<()> {
         scene,
         render: RenderOptions {
             method: args.scene.method.method()?,
-            resolution: args.scene.method.res,
+            resolution: args.scene.method.res()?,
             dims: args.scene.method.dims,
             follow: args.scene.follow(),
             inject_texels: args.scene.inject_texels,
