@@ -28,11 +28,13 @@ layout(constant_id = 0) const bool LISTED = false;
 layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint dst_y; } push;
 
 // The child at `v` as seen by a cone travelling along `dir`: its light only where the light
-// leaves towards the cone (against `dir`), with a soft edge for grazing normals.
-vec4 child(ivec3 v, vec3 dir) {
+// leaves towards the cone (against `dir`), with a soft edge for grazing normals. `first`: where
+// the parent's first child (its even corner) is stored; its 2³ children share one brick, so
+// they lie next to it (bricks.glsl), and the page table is read once a parent.
+vec4 child(ivec3 v, vec3 dir, ivec3 first) {
     vec4 c = imageLoad(src, v + ivec3(0, push.src_y, 0));
     if (push.base == 0u) return c;
-    uint side = imageLoad(lit_side, stored_at(v)).r;
+    uint side = imageLoad(lit_side, first + (v & 1)).r;
     if ((side >> 24) == 0u) return c;
     vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
     return vec4(c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), c.a);
@@ -51,10 +53,11 @@ void main() {
     u[(axis + 1) % 3] = 1;
     w[(axis + 2) % 3] = 1;
     vec4 sum = vec4(0.0);
+    ivec3 first = push.base != 0u ? stored_at(2 * v) : ivec3(0);
     for (int i = 0; i < 4; i++) {
         ivec3 base = 2 * v + u * (i & 1) + w * (i >> 1);
-        vec4 near = child(positive ? base : base + step, dir);
-        vec4 far = child(positive ? base + step : base, dir);
+        vec4 near = child(positive ? base : base + step, dir, first);
+        vec4 far = child(positive ? base + step : base, dir, first);
         sum += near + (1.0 - near.a) * far;
     }
     imageStore(dst, v + ivec3(0, push.dst_y, 0), sum * 0.25);

@@ -159,9 +159,10 @@ impl FilterPass {
         list.dispatch_or_dense(cmd, self.parents.is_some(), self.dims.map(|n| (n >> level).max(1)));
     }
 
-    /// Builds the isotropic chain, the moment (when `moment`) and, when `anisotropic`, the six
-    /// directional chains; `occupied` is this frame's list of occupied voxels (its dispatch
-    /// arguments written).
+    /// Builds the isotropic chain (when `isotropic`: the cones of the isotropic model and the
+    /// radiance view read it; the directional model's cones read only its level 0), the moment
+    /// (when `moment`) and, when `anisotropic`, the six directional chains; `occupied` is this
+    /// frame's list of occupied voxels (its dispatch arguments written).
     pub fn record(
         &self,
         cmd: vk::CommandBuffer,
@@ -169,6 +170,7 @@ impl FilterPass {
         occupied: &OccupiedVoxels,
         anisotropic: bool,
         moment: bool,
+        isotropic: bool,
     ) {
         let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         let per_chain = self.levels as usize - 1;
@@ -186,9 +188,16 @@ impl FilterPass {
             self.dispatch_level(cmd, 0, occupied);
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
+        if !isotropic && self.parents.is_none() {
+            // Unbuilt levels read as empty, as the listed path's clear leaves them.
+            gpu::clear_mips(&self.ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
+            gpu::memory_barrier(&self.ctx, cmd, scope::CLEAR_WRITE, r);
+        }
         for level in 1..self.levels {
-            self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
-            self.dispatch_level(cmd, level, occupied);
+            if isotropic {
+                self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
+                self.dispatch_level(cmd, level, occupied);
+            }
             if moment {
                 self.pipeline.bind(cmd, &[self.sets.sets[per_chain + level as usize - 1]]);
                 self.dispatch_level(cmd, level, occupied);

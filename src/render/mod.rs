@@ -377,7 +377,9 @@ impl Renderer {
                     temporal && bounces == 1,
                 );
             });
-            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment);
+            // The isotropic chain above level 0 only where something reads it.
+            let iso = !aniso || matches!(self.options.view, View::Radiance(_));
+            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, iso);
             t.span(cmd, "filter", filter);
             if let Some(b) = &self.bounce {
                 t.span(cmd, "bounces", || {
