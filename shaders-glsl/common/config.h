@@ -57,7 +57,8 @@
 // size only trades the page table (4 bytes a brick) against the empty voxels of occupied
 // bricks. Measured (docs/benchmarks.md, "Sparse storage"): 2³ bricks hold Sponza's 256-voxel
 // grid in 19% of its texels and the Cornell box's 256³ in 5%; 4³ bricks need 38% and 10%, 8³
-// 61% and 19%; with the table, 2³ costs the fewest bytes in both.
+// 61% and 19%; with the table, 2³ costs the fewest bytes in both. At least 2: a level-1
+// parent's eight children then share one brick (gi/filter_aniso.comp reads its page once).
 #define BRICK_SIZE 2
 #define BRICK_SHIFT 1
 // Page-table entries that are no slot: being claimed, and refused (the pool is full).
