@@ -156,6 +156,21 @@ fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
     let (code, err) = vct(&["voxelize", "--dims", "64,64", "--view", out.to_str().unwrap()]);
     assert_eq!(code, 2, "--dims 64,64: {err}");
     assert!(err.contains("--dims"), "{err}");
+    // --res auto and its target, and the brick pool.
+    let o = out.to_str().unwrap();
+    for (args, code, says) in [
+        (&["voxelize", "--res", "auto", "--view", o][..], 1, "--res auto"),
+        (&["render", "--res", "many", "--out", o][..], 2, "--res"),
+        (&["render", "--target-flip", "0.1", "--out", o][..], 1, "--target-flip"),
+        (&["render", "--res", "auto", "--target-flip", "2", "--out", o][..], 1, "--target-flip"),
+        (&["render", "--res", "auto", "--dims", "64,64,64", "--out", o][..], 1, "--dims"),
+        (&["render", "--bricks", "0", "--out", o][..], 2, "--bricks"),
+        (&["render", "--res", "32", "--bricks", "4", "--out", o][..], 1, "brick pool is full"),
+    ] {
+        let (c, err) = vct(args);
+        assert_eq!(c, code, "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
     let empty = write(&d, "empty.obj", "# nothing here\nv 0 0 0\n");
     let (code, err) = vct(&["render", empty.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert_eq!(code, 1);

@@ -284,16 +284,15 @@ pub fn build(
         let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
         return Ok((volume, voxelizer));
     }
-    let census = sized(bricks.unwrap_or(0))?;
-    let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &census, method)?;
+    let mut volume = sized(bricks.unwrap_or(0))?;
+    let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
     if bricks.is_some() {
-        return Ok((census, voxelizer));
+        return Ok((volume, voxelizer));
     }
-    ctx.submit_and_wait("brick census", |cmd| voxelizer.record(cmd, scene_gpu, &census))?;
-    let needed = census.bricks.usage().needed;
-    let volume = sized(needed + (needed as f64 * headroom).ceil() as u32)?;
+    ctx.submit_and_wait("brick census", |cmd| voxelizer.record(cmd, scene_gpu, &volume))?;
+    let needed = volume.bricks.usage().needed;
+    volume.resize_pool(needed + (needed as f64 * headroom).ceil() as u32 + 1)?;
     voxelizer.rebind(&volume);
-    drop(census);
     Ok((volume, voxelizer))
 }
 

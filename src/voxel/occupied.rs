@@ -62,6 +62,14 @@ impl OccupiedVoxels {
         Ok(OccupiedVoxels { ctx: ctx.clone(), list, args, pipeline, set })
     }
 
+    /// A new list with room for `voxels` (the GPU must be idle).
+    pub fn resize(&mut self, voxels: u64) -> Result<()> {
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+        self.list = Buffer::new(&self.ctx, "occupied voxels", list_bytes(voxels), usage, MemoryLocation::GpuOnly)?;
+        self.set.write_buffer(0, vk::DescriptorType::STORAGE_BUFFER, &self.list);
+        Ok(())
+    }
+
     /// Empties the list, before the pass that appends to it.
     pub fn record_reset(&self, cmd: vk::CommandBuffer) {
         gpu::memory_barrier(&self.ctx, cmd, scope::ANY, scope::TRANSFER_WRITE);

@@ -97,6 +97,23 @@ impl VoxelVolume {
         })
     }
 
+    /// Re-sizes the brick pool to `capacity` slots (the empty one included): new textures, table
+    /// and list, the list's pipeline kept (the GPU must be idle; rebind the voxelizer after).
+    /// A CPU driver keeps some memory of every pipeline it compiles, so the census reuses it.
+    pub fn resize_pool(&mut self, capacity: u32) -> Result<()> {
+        let ctx = &self.ctx;
+        let bricks = Bricks::new(ctx, &self.grid, self.bricks.storage, capacity)?;
+        let desc = voxel_desc(bricks.extent(&self.grid));
+        check_fits(ctx, &self.grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
+        let [a, n, e] = VOXEL_TEXTURES;
+        self.albedo = Image::new(ctx, a, desc)?;
+        self.normal = Image::new(ctx, n, desc)?;
+        self.emission = Image::new(ctx, e, desc)?;
+        self.occupied.resize(bricks.voxel_room(&self.grid))?;
+        self.bricks = bricks;
+        Ok(())
+    }
+
     /// Clears the textures to zero (empty) and the list of occupied voxels, and makes them ready
     /// for the voxelizers' atomics.
     pub fn record_clear(&self, cmd: vk::CommandBuffer) {
