@@ -17,7 +17,7 @@ layout(set = BRICKS_SET, binding = BRICKS_BINDING, std430)
 #ifdef BRICKS_CLAIM
     coherent volatile
 #else
-    readonly
+    restrict readonly
 #endif
     buffer Bricks {
     uint next;       // the next slot to give out (1 after the clear; slot 0 is the empty brick)
