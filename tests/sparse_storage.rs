@@ -81,6 +81,9 @@ fn the_pool_holds_every_occupied_brick_and_no_other() {
         }
         let n = slots.len() as u32;
         assert!(slots.iter().all(|&s| (1..=n).contains(&s)), "{name}: slots are not 1..={n}");
+        // The census gave them in brick order, and the frame kept them.
+        let order: Vec<u32> = pages.iter().copied().filter(|&s| s != 0).collect();
+        assert!(order.windows(2).all(|w| w[0] < w[1]), "{name}: slots out of brick order");
         println!("{name}: {n} of {} bricks ({:.1}%)", want.len(), 100.0 * n as f64 / want.len() as f64);
         assert!(n > 0 && (n as usize) < want.len() / 2, "{name}: {n} bricks of {}", want.len());
     }

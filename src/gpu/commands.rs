@@ -204,6 +204,12 @@ pub fn update_buffer(ctx: &Context, cmd: vk::CommandBuffer, buffer: &Buffer, dat
     unsafe { ctx.device.cmd_update_buffer(cmd, buffer.raw, 0, data) };
 }
 
+/// Copies the first `bytes` of `src` into `dst` from `offset` on.
+pub fn copy_buffer_at(ctx: &Context, cmd: vk::CommandBuffer, src: &Buffer, dst: &Buffer, offset: u64, bytes: u64) {
+    let region = [vk::BufferCopy { src_offset: 0, dst_offset: offset, size: bytes }];
+    unsafe { ctx.device.cmd_copy_buffer(cmd, src.raw, dst.raw, &region) };
+}
+
 /// Copies the first `bytes` of `src` into `dst`.
 pub fn copy_buffer(ctx: &Context, cmd: vk::CommandBuffer, src: &Buffer, dst: &Buffer, bytes: u64) {
     let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: bytes }];

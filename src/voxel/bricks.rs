@@ -117,6 +117,9 @@ pub struct Bricks {
     pub count: UVec3,
     /// Slots in the pool, the empty slot 0 included (0 when dense).
     pub capacity: u32,
+    /// The slots were given by [`Bricks::assign`] and stay from frame to frame (only bricks
+    /// new to the grid are claimed); otherwise the table is emptied every frame.
+    kept: bool,
 }
 
 impl Bricks {
@@ -149,7 +152,7 @@ impl Bricks {
         let header = [1, capacity, slots.x.trailing_zeros(), slots.y.trailing_zeros(), count.x, count.y, count.z, 0];
         // Until the first voxelization is read back: no brick needed yet.
         readback.write(0, bytemuck::cast_slice(&header));
-        Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity })
+        Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity, kept: false })
     }
 
     pub fn sparse(&self) -> bool {
@@ -179,15 +182,49 @@ impl Bricks {
         }
     }
 
-    /// Empties the table (no brick has a slot; the next one given out is 1), before the
-    /// voxelizers claim.
+    /// Before the voxelizers claim: empties the table (no brick has a slot; the next one given
+    /// out is 1), or with assigned slots resets only the count of slots given out.
     pub fn record_reset(&self, cmd: vk::CommandBuffer) {
         let ctx = &self.ctx;
         gpu::memory_barrier(ctx, cmd, scope::ANY, scope::TRANSFER_WRITE);
         gpu::update_buffer(ctx, cmd, &self.table, bytemuck::cast_slice(&self.header));
-        if self.sparse() {
+        if self.sparse() && !self.kept {
             gpu::fill_buffer_at(ctx, cmd, &self.table, HEADER, vk::WHOLE_SIZE, 0);
         }
+    }
+
+    /// Gives every brick the census asked for (`asked`: a census table, nonzero where a brick
+    /// was asked for) a slot in brick order, 1, 2, ..., and keeps them from frame to frame: a
+    /// static scene's fitted grid needs the same bricks every frame, so the voxelizers claim
+    /// nothing after this, and bricks near each other in the grid sit near each other in the
+    /// pool. The GPU must be idle.
+    pub fn assign(&mut self, asked: &[u32]) -> Result<()> {
+        let mut next = 1u32;
+        let pages: Vec<u32> = asked
+            .iter()
+            .map(|&a| {
+                if a == 0 {
+                    return 0;
+                }
+                next += 1;
+                next - 1
+            })
+            .collect();
+        if next > self.capacity {
+            return Err(Error::param(
+                "bricks",
+                format!("the census asked for {} bricks; the pool holds {}", next - 1, self.capacity.saturating_sub(1)),
+            ));
+        }
+        let staging = Buffer::from_slice(&self.ctx, "brick pages", vk::BufferUsageFlags::TRANSFER_SRC, &pages)?;
+        let ctx = &self.ctx;
+        ctx.submit_and_wait("brick slots", |cmd| {
+            gpu::memory_barrier(ctx, cmd, scope::ANY, scope::TRANSFER_WRITE);
+            gpu::copy_buffer_at(ctx, cmd, &staging, &self.table, HEADER, staging.size);
+        })?;
+        self.header[0] = next;
+        self.kept = true;
+        Ok(())
     }
 
     /// Copies the header to the host after the voxelizers' writes (made visible to transfers

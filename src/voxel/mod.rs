@@ -265,7 +265,8 @@ pub const MOVING_POOL_HEADROOM: f64 = 0.25;
 /// The volume over `grid` and its voxelizer. Sparse storage sizes the pool by a census: one
 /// voxelization into a pool of no slots counts the bricks the scene occupies, and the pool
 /// gets that many slots (plus MOVING_POOL_HEADROOM of them when the grid is `moving`), or
-/// `bricks` slots when given. `Auto` storage is resolved for `moving` first.
+/// `bricks` slots when given. A fixed grid keeps the census' bricks from frame to frame, in
+/// brick order ([`bricks::Bricks::assign`]). `Auto` storage is resolved for `moving` first.
 pub fn build(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -291,7 +292,12 @@ pub fn build(
     }
     ctx.submit_and_wait("brick census", |cmd| voxelizer.record(cmd, scene_gpu, &volume))?;
     let needed = volume.bricks.usage().needed;
+    let asked = (!moving).then(|| volume.bricks.read_pages()).transpose()?;
     volume.resize_pool(needed + (needed as f64 * headroom).ceil() as u32 + 1)?;
+    // A fixed grid keeps the census' bricks, in brick order; a moving one claims them anew.
+    if let Some(asked) = asked {
+        volume.bricks.assign(&asked)?;
+    }
     voxelizer.rebind(&volume);
     Ok((volume, voxelizer))
 }
