@@ -219,14 +219,15 @@ fn mips_over_occupied_texels_equal_the_dense_filter() {
 
 #[test]
 fn res_auto_picks_a_smaller_grid_for_a_looser_target() {
-    use vct::bench::auto::{choose, from_size};
+    use vct::bench::auto::{choose, from_size, Target};
     let ctx = common::context();
     let mut scene = Scene::embedded_default().unwrap();
     scene.set_size(Some(64), Some(64)).unwrap();
     let cache = std::env::temp_dir().join(format!("vct-auto-{}", std::process::id()));
     let o = RenderOptions::default();
     let n = [16, 32, 64];
-    let pick = |target| choose(&ctx, &scene, "cornell-auto", o, &n, Some(target), 16, &cache, &|_| {}).unwrap();
+    let at = |flip| Target { flip, spp: 16, cache: &cache };
+    let pick = |target| choose(&ctx, &scene, "cornell-auto", o, &n, at(Some(target)), &|_| {}).unwrap();
     // A target no grid meets: every one is tried, and the closest is chosen and said so.
     let all = pick(1e-6);
     println!("{all}");
@@ -244,7 +245,7 @@ fn res_auto_picks_a_smaller_grid_for_a_looser_target() {
     println!("{tight}");
     assert!(tight.met && tight.resolution > loose.resolution, "{tight}");
     // Without a target: from the scene's size (5.5 m at 8 voxels a metre: 64), unmeasured.
-    let sized = choose(&ctx, &scene, "cornell-auto", o, &n, None, 16, &cache, &|_| {}).unwrap();
+    let sized = choose(&ctx, &scene, "cornell-auto", o, &n, at(None), &|_| {}).unwrap();
     assert_eq!((sized.resolution, sized.met, sized.tried.len()), (from_size(&scene), false, 0));
     assert_eq!(sized.resolution, 64);
     common::assert_clean(&ctx);

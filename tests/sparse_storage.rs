@@ -17,7 +17,7 @@ use vct::render::{RenderOptions, Renderer};
 use vct::scene::file::Filter;
 use vct::scene::gpu::SceneGpu;
 use vct::scene::Scene;
-use vct::voxel::bricks::{brick_count, Storage};
+use vct::voxel::bricks::{brick_count, Storage, StorageRequest};
 use vct::voxel::{occupancy_of, Coverage, VoxelGrid, VoxelizeMethod};
 
 /// Occupancy and page table of one sparse voxelization, and the dense one's occupancy.
@@ -30,7 +30,8 @@ fn voxelize_both(
     let scene_gpu = SceneGpu::new(ctx, scene).unwrap();
     let run = |storage| {
         let (volume, voxelizer) =
-            vct::voxel::build(ctx, scene, &scene_gpu, grid, method, storage, None, false).unwrap();
+            vct::voxel::build(ctx, scene, &scene_gpu, grid, method, StorageRequest { storage, ..Default::default() })
+                .unwrap();
         ctx.submit_and_wait("voxelize", |cmd| voxelizer.record(cmd, &scene_gpu, &volume)).unwrap();
         volume.bricks.check().unwrap();
         let pages = if volume.bricks.sparse() { volume.bricks.read_pages().unwrap() } else { Vec::new() };
@@ -132,7 +133,8 @@ fn a_full_pool_is_an_error_naming_both_counts() {
     let scene = Scene::embedded_default().unwrap();
     let options = RenderOptions { resolution: Some(32), bricks: Some(16), ..Default::default() };
     let r = Renderer::new(&ctx, scene.clone(), options).unwrap();
-    let e = r.render().err().expect("a 16-brick pool held the Cornell box").to_string();
+    let Err(e) = r.render() else { panic!("a 16-brick pool held the Cornell box") };
+    let e = e.to_string();
     assert!(e.contains("brick pool is full") && e.contains("holds 16"), "{e}");
     drop(r);
     // The census' pool holds the scene, frame after frame.

@@ -18,6 +18,17 @@ use crate::scene::Scene;
 /// The grids `--res auto` tries, coarsest first (voxels along the longest axis).
 pub const CANDIDATES: [u32; 5] = [16, 32, 64, 128, 256];
 
+/// The error target and the reference it is measured against.
+#[derive(Clone, Copy, Debug)]
+pub struct Target<'a> {
+    /// The largest FLIP allowed; `None`: a resolution from the scene's size.
+    pub flip: Option<f32>,
+    /// Samples a pixel of the path-traced reference.
+    pub spp: u32,
+    /// Where references are cached.
+    pub cache: &'a Path,
+}
+
 /// One grid tried.
 #[derive(Clone, Debug, Serialize)]
 pub struct Tried {
@@ -49,20 +60,19 @@ pub fn from_size(scene: &Scene) -> u32 {
 }
 
 /// Renders `scene` with `options` at each of `candidates` (coarsest first; the CLI's:
-/// [`CANDIDATES`]) until one meets `target` against the path-traced reference (`spp` samples a pixel, cached in `cache`); `name` names the scene in
-/// the cache. The choice is the first that meets the target, else the one closest to it (said
-/// so in `reason`).
+/// [`CANDIDATES`]) until one meets the target against the path-traced reference; `name`
+/// names the scene in the cache. The choice is the first that meets the target, else the one
+/// closest to it (said so in `reason`).
 pub fn choose(
     ctx: &Arc<Context>,
     scene: &Scene,
     name: &str,
     options: RenderOptions,
     candidates: &[u32],
-    target: Option<f32>,
-    spp: u32,
-    cache: &Path,
+    target: Target,
     progress: &dyn Fn(&str),
 ) -> Result<Choice> {
+    let Target { flip: target, spp, cache } = target;
     let Some(target) = target else {
         let n = from_size(scene);
         let metres = scene.mesh.bounds.size().max_element();

@@ -253,16 +253,12 @@ impl Renderer {
         let need =
             |pool| memory::MemoryReport::for_grid(&grid, &memory::Layout { bounces, listed, pool, temporal }).bytes;
         crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(1)))?;
-        let (voxels, voxelizer) = crate::voxel::build(
-            ctx,
-            &scene,
-            &scene_gpu,
-            grid,
-            options.method,
-            options.storage,
-            options.bricks,
-            options.follow.is_some(),
-        )?;
+        let request = crate::voxel::bricks::StorageRequest {
+            storage: options.storage,
+            bricks: options.bricks,
+            moving: options.follow.is_some(),
+        };
+        let (voxels, voxelizer) = crate::voxel::build(ctx, &scene, &scene_gpu, grid, options.method, request)?;
         crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(voxels.bricks.capacity)))?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
         let gi = &scene.settings.gi;

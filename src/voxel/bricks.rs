@@ -55,6 +55,17 @@ impl Storage {
     }
 }
 
+/// How a volume stores its voxels, for [`super::build`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StorageRequest {
+    pub storage: Storage,
+    /// Slots of a sparse pool; `None`: as many as the census counts.
+    pub bricks: Option<u32>,
+    /// The grid moves with the camera (resolves `Auto` to dense; a sparse pool gets headroom
+    /// and claims its bricks every frame).
+    pub moving: bool,
+}
+
 /// Bytes of the table's header (`Bricks` in bricks.glsl: eight uints).
 const HEADER_WORDS: usize = 8;
 const HEADER: u64 = 4 * HEADER_WORDS as u64;

@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::bricks::Storage;
+use super::bricks::{Storage, StorageRequest};
 use super::{occupancy_of, VoxelGrid, VoxelizeMethod};
 use crate::error::Result;
 use crate::gpu::{Context, GpuTimer};
@@ -63,7 +63,8 @@ pub fn voxelize_stored(
     repeats: u32,
 ) -> Result<VoxelRun> {
     let scene_gpu = SceneGpu::new(ctx, scene)?;
-    let (volume, voxelizer) = super::build(ctx, scene, &scene_gpu, grid, method, storage, bricks, false)?;
+    let (volume, voxelizer) =
+        super::build(ctx, scene, &scene_gpu, grid, method, StorageRequest { storage, bricks, moving: false })?;
     let timer = GpuTimer::new(ctx, 1)?;
     let mut times = Vec::new();
     for _ in 0..repeats.max(1) {

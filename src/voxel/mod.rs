@@ -273,10 +273,9 @@ pub fn build(
     scene_gpu: &SceneGpu,
     grid: VoxelGrid,
     method: VoxelizeMethod,
-    storage: bricks::Storage,
-    bricks: Option<u32>,
-    moving: bool,
+    request: bricks::StorageRequest,
 ) -> Result<(VoxelVolume, Voxelizer)> {
+    let bricks::StorageRequest { storage, bricks, moving } = request;
     let storage = storage.resolve(moving);
     let headroom = if moving { MOVING_POOL_HEADROOM } else { 0.0 };
     let sized = |n: u32| VoxelVolume::new(ctx, grid, storage, n + 1);

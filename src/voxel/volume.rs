@@ -148,7 +148,7 @@ impl VoxelVolume {
         if !self.bricks.sparse() {
             return Ok(bytes);
         }
-        let texel = crate::gpu::image::texel_size(image.desc.format) as usize;
+        let texel = crate::gpu::image::texel_size(image.desc.format);
         let pages = self.bricks.read_pages()?;
         Ok(super::bricks::scatter(&self.grid, &pages, image.desc.extent, &bytes, texel))
     }

@@ -97,9 +97,7 @@ fn render(args: RenderArgs) -> Result<()> {
             &name,
             options,
             &vct::bench::auto::CANDIDATES,
-            args.target_flip,
-            args.spp,
-            &args.cache,
+            vct::bench::auto::Target { flip: args.target_flip, spp: args.spp, cache: &args.cache },
             &|m| eprintln!("{m}"),
         )
         .context("choosing the resolution (--res auto)")?;
