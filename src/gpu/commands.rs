@@ -190,7 +190,7 @@ pub fn dispatch_indirect(ctx: &Context, cmd: vk::CommandBuffer, args: &Buffer) {
 
 /// Fills the first `bytes` of `buffer` with `value` (a transfer write).
 pub fn fill_buffer(ctx: &Context, cmd: vk::CommandBuffer, buffer: &Buffer, bytes: u64, value: u32) {
-    unsafe { ctx.device.cmd_fill_buffer(cmd, buffer.raw, 0, bytes, value) };
+    fill_buffer_at(ctx, cmd, buffer, 0, bytes, value);
 }
 
 /// Fills `bytes` (a multiple of 4, or `vk::WHOLE_SIZE`) of `buffer` from `offset` with `value`.
@@ -212,8 +212,7 @@ pub fn copy_buffer_at(ctx: &Context, cmd: vk::CommandBuffer, src: &Buffer, dst: 
 
 /// Copies the first `bytes` of `src` into `dst`.
 pub fn copy_buffer(ctx: &Context, cmd: vk::CommandBuffer, src: &Buffer, dst: &Buffer, bytes: u64) {
-    let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: bytes }];
-    unsafe { ctx.device.cmd_copy_buffer(cmd, src.raw, dst.raw, &region) };
+    copy_buffer_at(ctx, cmd, src, dst, 0, bytes);
 }
 
 /// Reads a device-local buffer (with TRANSFER_SRC usage) back through a staging copy, after
@@ -388,10 +387,7 @@ pub fn upload_buffer<T: bytemuck::Pod>(
     let staging = Buffer::from_slice(ctx, &format!("{name} staging"), vk::BufferUsageFlags::TRANSFER_SRC, data)?;
     let buffer =
         Buffer::new(ctx, name, staging.size, usage | vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuOnly)?;
-    ctx.submit_and_wait(&format!("upload {name}"), |cmd| unsafe {
-        let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: staging.size }];
-        ctx.device.cmd_copy_buffer(cmd, staging.raw, buffer.raw, &region);
-    })?;
+    ctx.submit_and_wait(&format!("upload {name}"), |cmd| copy_buffer(ctx, cmd, &staging, &buffer, staging.size))?;
     Ok(buffer)
 }
 

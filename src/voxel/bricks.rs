@@ -138,10 +138,8 @@ impl Bricks {
     /// storage keeps a header-only table, bound but never read.
     pub fn new(ctx: &Arc<Context>, grid: &VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
         let storage = storage.resolve(false);
-        let (count, capacity) = match storage {
-            Storage::Dense => (UVec3::ZERO, 0),
-            Storage::Sparse | Storage::Auto => (brick_count(grid), capacity.max(1)),
-        };
+        let (count, capacity) =
+            if storage == Storage::Dense { (UVec3::ZERO, 0) } else { (brick_count(grid), capacity.max(1)) };
         let slots = pool_slots(capacity);
         let limit = ctx.info.limits.max_image_dimension3_d / BRICK_SIZE;
         if storage == Storage::Sparse && slots.max_element() > limit {
@@ -179,17 +177,19 @@ impl Bricks {
     /// The most voxels this layout can hold: the grid's, or the pool's slots' (each
     /// occupied voxel lies in a brick with a slot, so the occupied list needs no more room).
     pub fn voxel_room(&self, grid: &VoxelGrid) -> u64 {
-        match self.storage {
-            Storage::Dense => grid.voxel_count() as u64,
-            Storage::Sparse | Storage::Auto => voxel_room(grid, self.capacity),
+        if self.sparse() {
+            voxel_room(grid, self.capacity)
+        } else {
+            grid.voxel_count() as u64
         }
     }
 
     /// The extent of every per-voxel texture: the grid's when dense, the pool's when sparse.
     pub fn extent(&self, grid: &VoxelGrid) -> vk::Extent3D {
-        match self.storage {
-            Storage::Dense => super::volume::extent_of(grid.dims),
-            Storage::Sparse | Storage::Auto => pool_extent(self.capacity),
+        if self.sparse() {
+            pool_extent(self.capacity)
+        } else {
+            super::volume::extent_of(grid.dims)
         }
     }
 
@@ -286,6 +286,11 @@ impl Bricks {
     }
 }
 
+/// The first texel of slot `s` in a pool of `slots` (`slot_texel` in bricks.glsl).
+fn slot_origin(s: u32, slots: UVec3) -> UVec3 {
+    UVec3::new(s % slots.x, (s / slots.x) % slots.y, s / (slots.x * slots.y)) * BRICK_SIZE
+}
+
 /// A pooled texture read back (`texel` bytes a texel, x fastest over `pool` texels) as the
 /// dense grid it stores: each brick's voxels from its slot, zero where no brick has a slot.
 pub fn scatter(grid: &VoxelGrid, pages: &[u32], pool: vk::Extent3D, pooled: &[u8], texel: usize) -> Vec<u8> {
@@ -299,7 +304,7 @@ pub fn scatter(grid: &VoxelGrid, pages: &[u32], pool: vk::Extent3D, pooled: &[u8
         }
         let i = i as u32;
         let b = UVec3::new(i % count.x, (i / count.x) % count.y, i / (count.x * count.y)) * BRICK_SIZE;
-        let o = UVec3::new(s % slots.x, (s / slots.x) % slots.y, s / (slots.x * slots.y)) * BRICK_SIZE;
+        let o = slot_origin(s, slots);
         for z in 0..BRICK_SIZE {
             for y in 0..BRICK_SIZE {
                 for x in 0..BRICK_SIZE {
@@ -340,7 +345,7 @@ mod tests {
         let pool = pool_extent(2);
         let slots = pool_slots(2);
         let mut pooled = vec![0u8; (pool.width * pool.height * pool.depth) as usize];
-        let o = UVec3::new(1 % slots.x, (1 / slots.x) % slots.y, 1 / (slots.x * slots.y)) * BRICK_SIZE;
+        let o = slot_origin(1, slots);
         for z in 0..2 {
             for y in 0..2 {
                 for x in 0..2 {

@@ -78,20 +78,26 @@ pub fn check_fits(ctx: &Context, grid: &VoxelGrid, need: u64) -> Result<()> {
     Ok(())
 }
 
+/// The three voxel textures in `bricks`' layout, after the heap check.
+fn textures(ctx: &Arc<Context>, grid: &VoxelGrid, bricks: &Bricks) -> Result<[Image; 3]> {
+    let desc = voxel_desc(bricks.extent(grid));
+    check_fits(ctx, grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
+    let [a, n, e] = VOXEL_TEXTURES;
+    Ok([Image::new(ctx, a, desc)?, Image::new(ctx, n, desc)?, Image::new(ctx, e, desc)?])
+}
+
 impl VoxelVolume {
     /// The textures over `grid`, dense or in a pool of `capacity` brick slots (the empty slot
     /// included).
     pub fn new(ctx: &Arc<Context>, grid: VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
         let bricks = Bricks::new(ctx, &grid, storage, capacity)?;
-        let desc = voxel_desc(bricks.extent(&grid));
-        check_fits(ctx, &grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
-        let [a, n, e] = VOXEL_TEXTURES;
+        let [albedo, normal, emission] = textures(ctx, &grid, &bricks)?;
         Ok(VoxelVolume {
             ctx: ctx.clone(),
             grid,
-            albedo: Image::new(ctx, a, desc)?,
-            normal: Image::new(ctx, n, desc)?,
-            emission: Image::new(ctx, e, desc)?,
+            albedo,
+            normal,
+            emission,
             occupied: OccupiedVoxels::new(ctx, bricks.voxel_room(&grid))?,
             bricks,
         })
@@ -103,12 +109,7 @@ impl VoxelVolume {
     pub fn resize_pool(&mut self, capacity: u32) -> Result<()> {
         let ctx = &self.ctx;
         let bricks = Bricks::new(ctx, &self.grid, self.bricks.storage, capacity)?;
-        let desc = voxel_desc(bricks.extent(&self.grid));
-        check_fits(ctx, &self.grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
-        let [a, n, e] = VOXEL_TEXTURES;
-        self.albedo = Image::new(ctx, a, desc)?;
-        self.normal = Image::new(ctx, n, desc)?;
-        self.emission = Image::new(ctx, e, desc)?;
+        [self.albedo, self.normal, self.emission] = textures(ctx, &self.grid, &bricks)?;
         self.occupied.resize(bricks.voxel_room(&self.grid))?;
         self.bricks = bricks;
         Ok(())
