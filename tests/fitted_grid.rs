@@ -12,6 +12,7 @@ use glam::{UVec3, Vec3};
 use vct::gpu::Context;
 use vct::reference::coverage::RefGrid;
 use vct::reference::metrics::flip;
+use vct::render::radiance::Chains;
 use vct::render::{RenderOptions, Renderer};
 use vct::scene::Scene;
 use vct::voxel::bricks::Storage;
@@ -126,10 +127,15 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     assert!(s.bytes < m.bytes, "sparse {} B, dense {} B", s.bytes, m.bytes);
     assert_eq!(s.cube_bytes, m.cube_bytes, "the cube column is the dense cube either way");
     assert_eq!(m.dims, [64, 16, 32]);
-    // By hand: 32768 voxels; R32UI albedo 4 B each; the RGBA16F radiance chain 8 B at levels of
-    // 32768, 4096, 512, 64, 8 texels.
+    // By hand: 32768 voxels; R32UI albedo 4 B each. The default (directional) model reads the
+    // isotropic volume's level 0 only: RGBA16F, 8 B a voxel. Its six chains of 32 × 8 × 16
+    // (four mips) are stacked along x, each followed by a separator of 8 texels (one at the
+    // coarsest mip): 5 × 40 + 32 = 232 texels long.
+    let row = |name| m.rows.iter().find(|r| r.name == name).unwrap();
     assert_eq!(m.rows[0].bytes, 4 * 32768);
-    assert_eq!(m.rows.iter().find(|r| r.name == "radiance volume").unwrap().bytes, 8 * (32768 + 4096 + 512 + 64 + 8));
+    assert_eq!(row("radiance volume").bytes, 8 * 32768);
+    assert_eq!(row("radiance directional chains").extent, [232, 8, 16]);
+    assert_eq!(row("radiance directional chains").bytes, 8 * (232 * 8 * 16 + 116 * 4 * 8 + 58 * 2 * 4 + 29 * 2));
     // Over the cube, level 0 is 64³ and the chain three levels longer.
     assert_eq!(m.rows[0].cube_bytes, 4 * 64 * 64 * 64);
     println!("{m}");
@@ -137,7 +143,7 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     // A cubic grid is its own cube.
     let c = vct::render::memory::MemoryReport::for_grid(
         &VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::splat(32)).unwrap(),
-        &vct::render::memory::Layout { bounces: true, listed: true, pool: None, temporal: true },
+        &vct::render::memory::Layout { bounces: true, listed: true, pool: None, temporal: true, chains: Chains::ALL },
     );
     assert_eq!(c.bytes, c.cube_bytes);
     common::assert_clean(&ctx);

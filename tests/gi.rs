@@ -97,15 +97,18 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
         (t.truncate() * (1.0 - 4.0 * n.dot(dir)).clamp(0.0, 1.0)).extend(t.w)
     };
     let mut hidden = 0;
-    // The six chains share one atlas, stacked along y with an empty block between them.
+    // The six chains share one atlas, stacked along one axis with empty separators between them.
     let atlas = f16s(&gpu::read_image(&ctx, &r.radiance.aniso, vk::ImageLayout::GENERAL, 0).unwrap());
-    let rows = 8 * vct::config::ANISO_BLOCKS as usize;
+    let layout = r.radiance.atlas;
+    let e = layout.extent();
+    let (width, height) = (e.width as usize, e.height as usize);
     for d in 0..6 {
         let got: Vec<f32> = (0..8)
-            .flat_map(|z| (0..8).map(move |y| (z, y)))
-            .flat_map(|(z, y)| {
-                let start = 4 * 8 * ((2 * d * 8 + y) + rows * z);
-                atlas[start..start + 32].to_vec()
+            .flat_map(|z| (0..8).flat_map(move |y| (0..8).map(move |x| [x, y, z])))
+            .flat_map(|mut c| {
+                c[layout.axis] += d * layout.pitch as usize;
+                let start = 4 * (c[0] + width * (c[1] + height * c[2]));
+                atlas[start..start + 4].to_vec()
             })
             .collect();
         let axis = d / 2;
@@ -141,15 +144,16 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
         }
         assert!(nonzero > 20, "direction {d}: the volume is nearly empty");
     }
-    // The blocks between the chains stay empty: trilinear filtering meets zeros at a chain's edge.
-    for gap in [1usize, 3, 5, 7, 9] {
-        let ys = gap * 8..gap * 8 + 8;
-        let dirty = (0..8).flat_map(|z| ys.clone().map(move |y| (z, y))).any(|(z, y)| {
-            let start = 4 * 8 * (y + rows * z);
-            atlas[start..start + 32].iter().any(|&v| v != 0.0)
-        });
-        assert!(!dirty, "gap block {gap} of the directional atlas was written");
-    }
+    // The separators between the chains stay empty: trilinear filtering meets zeros at a
+    // chain's edge. They are at least one texel at the coarsest mip.
+    let chain = layout.chain[layout.axis] as usize;
+    let separator = layout.pitch as usize - chain;
+    assert!(separator >= 1 << (r.radiance.aniso.desc.mip_levels - 1), "separators of {separator} texels");
+    let dirty = (0..e.depth as usize)
+        .flat_map(|z| (0..height).flat_map(move |y| (0..width).map(move |x| [x, y, z])))
+        .filter(|c| c[layout.axis] % layout.pitch as usize >= chain)
+        .any(|c| atlas[4 * (c[0] + width * (c[1] + height * c[2]))..][..4].iter().any(|&v| v != 0.0));
+    assert!(!dirty, "a separator of the directional atlas was written");
     assert!(hidden > 100, "lit faces seen from behind should be dark ({hidden} children hidden)");
     drop(r);
     common::assert_clean(&ctx);

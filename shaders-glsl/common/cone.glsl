@@ -37,18 +37,25 @@ struct ConeParams {
     uint flags;        // CONE_FLAG_*
     float surface;     // how far the receiving surface's own voxels may reach above the start's
                        // plane (voxels): half a voxel for a point on the surface
+    vec3 atlas;        // the directional chains' atlas (frame.glsl, aniso_atlas)
 };
 
 // Anisotropic sample (Crassin et al. 2011): the three directional chains facing the cone, weighted
-// by the squared direction components `w`; `block` holds each axis's chain (its block in the
-// atlas, ANISO_BLOCKS high). The chains start at level 1 (their mip 0). `face` holds, per axis,
-// the share of that chain's light that can reach the cone (see `facing_across`).
-vec4 sample_chains(sampler3D atlas, vec3 pos, vec3 w, vec3 block, float lod, vec3 face) {
+// by the squared direction components `w`; `chain` holds each axis's chain, stacked in the atlas
+// as `atlas` says (render::radiance::AtlasLayout: axis, pitch and length over a chain's length).
+// The chains start at level 1 (their mip 0). `face` holds, per axis, the share of that chain's
+// light that can reach the cone (see `facing_across`).
+vec4 sample_chains(sampler3D tex, vec3 pos, vec3 w, vec3 chain, float lod, vec3 face, vec3 atlas) {
     float l = lod - 1.0;
-    vec3 y = (pos.y + block) / float(ANISO_BLOCKS);
-    vec4 x = textureLod(atlas, vec3(pos.x, y.x, pos.z), l);
-    vec4 yy = textureLod(atlas, vec3(pos.x, y.y, pos.z), l);
-    vec4 z = textureLod(atlas, vec3(pos.x, y.z, pos.z), l);
+    int axis = int(atlas.x);
+    vec3 along = (pos[axis] + chain * atlas.y) / atlas.z;
+    vec3 px = pos, py = pos, pz = pos;
+    px[axis] = along.x;
+    py[axis] = along.y;
+    pz[axis] = along.z;
+    vec4 x = textureLod(tex, px, l);
+    vec4 yy = textureLod(tex, py, l);
+    vec4 z = textureLod(tex, pz, l);
     vec3 wf = w * face;
     return vec4(wf.x * x.rgb + wf.y * yy.rgb + wf.z * z.rgb, w.x * x.a + w.y * yy.a + w.z * z.a);
 }
@@ -165,8 +172,8 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
     float rise = dot(dir, normal);
     vec3 w = dir * dir;
     bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
-    // Chain of axis a: 2a for a cone travelling along +a, 2a + 1 along -a; block 2 * chain.
-    vec3 block = 2.0 * (vec3(0.0, 2.0, 4.0) + vec3(lessThan(dir, vec3(0.0))));
+    // Chain of axis a: 2a for a cone travelling along +a, 2a + 1 along -a.
+    vec3 chain = vec3(0.0, 2.0, 4.0) + vec3(lessThan(dir, vec3(0.0)));
     March m = March(vec3(0.0), 0.0, p.start);
     vec3 pos;
     float level, step;
@@ -178,13 +185,13 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
         vec4 mo = face ? textureLod(moment, pos, level) : vec4(0.0);
         vec4 iso = textureLod(volume, pos, 0.0);
         if (face) iso.rgb *= facing(mo, dir);
-        vec4 s = mix(iso, sample_chains(atlas, pos, w, block, 1.0, face ? facing_across(mo, dir) : vec3(1.0)), level);
+        vec4 s = mix(iso, sample_chains(atlas, pos, w, chain, 1.0, face ? facing_across(mo, dir) : vec3(1.0), p.atlas), level);
         accumulate(m, s, level, step, correct);
     }
     for (; inside && i < p.steps && m.alpha < 0.95; i++) {
         if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
         vec3 share = face ? facing_across(textureLod(moment, pos, level), dir) : vec3(1.0);
-        accumulate(m, sample_chains(atlas, pos, w, block, level, share), level, step, correct);
+        accumulate(m, sample_chains(atlas, pos, w, chain, level, share, p.atlas), level, step, correct);
     }
     return finish(m);
 }

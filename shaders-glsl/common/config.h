@@ -18,11 +18,6 @@
 #define LIGHT_SPOT 0
 #define LIGHT_DIRECTIONAL 1
 
-// Anisotropic radiance (render::radiance): the six directional chains (+X, -X, +Y, -Y, +Z, -Z)
-// share one 3D texture, stacked along y with an empty block between neighbours, so that one
-// sampler reads any of them (chain d at block 2d) and trilinear filtering at every level meets
-// zeros at a chain's edge, as at the volume's border.
-#define ANISO_BLOCKS 11
 
 // Shadow filtering: PCF kernel radius in texels ((2r+1)^2 taps).
 #define PCF_RADIUS 1

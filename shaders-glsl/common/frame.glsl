@@ -22,6 +22,8 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0)
     vec4 history_shift; // xyz: this frame's grid origin in the previous frame's grid (voxels)
     vec4 voxel_dims;    // xyz: voxels along each axis
+    vec4 aniso_atlas;   // the directional chains' atlas (render::radiance::AtlasLayout): x: the axis they are
+                        // stacked along; y: one chain's pitch, z: the atlas' length, both over a chain's length
 } frame;
 
 // World position to voxel coordinates (voxel v spans [v, v + 1)).

@@ -8,7 +8,8 @@
 // side faces (inject.comp records it): a Lambertian face reflects into its own hemisphere, so
 // a wall lit on one side is opaque and dark seen from the other, even where its voxel is the
 // only one (the radiance-level counterpart of the thesis' §6 anisotropic voxels).
-// The chains live in one atlas (config.h, ANISO_BLOCKS): each reads and writes its own block.
+// The chains live in one atlas (render::radiance::AtlasLayout): each reads and writes its own
+// block, stacked along one axis.
 #include "config.h"
 #define OCCUPIED_SET 0
 #define OCCUPIED_BINDING 3
@@ -24,15 +25,29 @@ layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
 // One invocation per occupied texel of the level (as filter.comp).
 layout(constant_id = 0) const bool LISTED = false;
 // direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0;
-// src_y, dst_y: where the chain's block starts in src and dst (texels).
-layout(push_constant) uniform Push { uint direction; uint base; uint src_y; uint dst_y; } push;
+// axis: the one the atlas stacks its chains along; src_at, dst_at: where the chain starts along
+// it in src and dst (texels); size: the level's extent.
+layout(push_constant) uniform Push {
+    uint direction;
+    uint base;
+    uint axis;
+    uint src_at;
+    uint dst_at;
+    uint size_x, size_y, size_z;
+} push;
+
+// The texel of the chain's block at `v` (the chain starting at `at` along the stacking axis).
+ivec3 in_block(ivec3 v, uint at) {
+    v[push.axis] += int(at);
+    return v;
+}
 
 // The child at `v` as seen by a cone travelling along `dir`: its light only where the light
 // leaves towards the cone (against `dir`), with a soft edge for grazing normals. `first`: where
 // the parent's first child (its even corner) is stored; its 2³ children share one brick, so
 // they lie next to it (bricks.glsl), and the page table is read once a parent.
 vec4 child(ivec3 v, vec3 dir, ivec3 first) {
-    vec4 c = imageLoad(src, v + ivec3(0, push.src_y, 0));
+    vec4 c = imageLoad(src, in_block(v, push.src_at));
     if (push.base == 0u) return c;
     uint side = imageLoad(lit_side, first + (v & 1)).r;
     if ((side >> 24) == 0u) return c;
@@ -41,9 +56,8 @@ vec4 child(ivec3 v, vec3 dir, ivec3 first) {
 }
 
 void main() {
-    // The level's extent: the atlas' blocks are ANISO_BLOCKS high.
     ivec3 v;
-    if (!listed_or_dense(LISTED, imageSize(dst) / ivec3(1, ANISO_BLOCKS, 1), v)) return;
+    if (!listed_or_dense(LISTED, ivec3(push.size_x, push.size_y, push.size_z), v)) return;
     int axis = int(push.direction / 2u);
     bool positive = (push.direction & 1u) == 0u;
     ivec3 step = ivec3(0);
@@ -60,5 +74,5 @@ void main() {
         vec4 far = child(positive ? base + step : base, dir, first);
         sum += near + (1.0 - near.a) * far;
     }
-    imageStore(dst, v + ivec3(0, push.dst_y, 0), sum * 0.25);
+    imageStore(dst, in_block(v, push.dst_at), sum * 0.25);
 }

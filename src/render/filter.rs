@@ -28,7 +28,7 @@ pub struct FilterPass {
     moment_pipeline: Pipeline,
     /// Set `l - 1` builds directional level `l` (of every direction).
     aniso_sets: DescriptorSet,
-    /// `offsets[d][m]`: where chain `d` starts at chain mip `m` (atlas texels along y).
+    /// `offsets[d][m]`: where chain `d` starts at chain mip `m` (atlas texels along its stacking axis).
     offsets: Vec<Vec<u32>>,
     /// Set `l - 1` reads level `l - 1` and writes level `l` of the radiance; set
     /// `levels - 1 + l - 1` does so for the moment.
@@ -39,6 +39,9 @@ pub struct FilterPass {
     levels: u32,
     /// Over the occupied texels of each level (`None`: over every texel).
     parents: Option<ParentLists>,
+    /// Clear what the listed dispatches leave unwritten each frame (not where the occupied set
+    /// is fixed: see TemporalBlend::new).
+    clear: bool,
 }
 
 // A listed dispatch has one WORKGROUP_1D-sized group per WORKGROUP_1D listed texels, and the
@@ -50,13 +53,15 @@ fn storage_info(view: vk::ImageView) -> vk::DescriptorImageInfo {
 }
 
 impl FilterPass {
-    /// `listed`: filter over the occupied texels of each level (fed by `occupied`).
+    /// `listed`: filter over the occupied texels of each level (fed by `occupied`); `fixed`: the
+    /// same texels every frame (as TemporalBlend::new).
     pub fn new(
         ctx: &Arc<Context>,
         volume: &RadianceVolume,
         voxels: &VoxelVolume,
         occupied: &OccupiedVoxels,
         listed: bool,
+        fixed: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -71,6 +76,9 @@ impl FilterPass {
         let per_chain = volume.levels.saturating_sub(1);
         let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1), list(2)], 2 * per_chain)?;
         for (k, chain) in [&volume.radiance, &volume.moment].into_iter().enumerate() {
+            if chain.desc.mip_levels < volume.levels {
+                continue; // the isotropic chain, unallocated above level 0: never built
+            }
             for level in 1..volume.levels {
                 let set = k * per_chain as usize + level as usize - 1;
                 sets.write_images_at(set, 0, st, &[storage_info(chain.mip_view(level - 1))]);
@@ -112,7 +120,7 @@ impl FilterPass {
             &[storage(0), storage(1), storage(2), list(3), list(4)],
             per_chain,
         )?;
-        for level in 1..volume.levels {
+        for level in (1..volume.levels).filter(|_| volume.chains.directional) {
             let set = level as usize - 1;
             let src = if level == 1 { volume.radiance.mip_view(0) } else { volume.aniso.mip_view(level - 2) };
             aniso_sets.write_images_at(set, 0, st, &[storage_info(src)]);
@@ -122,13 +130,13 @@ impl FilterPass {
             aniso_sets.write_buffer_at(set, 4, sb, &voxels.bricks.table);
         }
         // Where each chain's block starts at each chain mip (src of level l is mip l - 2).
-        let offsets = (0..6).map(|d| (0..per_chain).map(|m| volume.chain_offset(d, m)).collect()).collect();
+        let offsets = (0..6).map(|d| (0..per_chain).map(|m| volume.atlas.offset(d, m as u32)).collect()).collect();
         let aniso_pipeline = Pipeline::compute(
             ctx,
             "anisotropic mip filter",
             Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&stored),
             &[aniso_sets.layout],
-            16,
+            32,
         )?;
         Ok(FilterPass {
             ctx: ctx.clone(),
@@ -142,6 +150,7 @@ impl FilterPass {
             dims,
             levels: volume.levels,
             parents,
+            clear: listed && !fixed,
         })
     }
 
@@ -177,9 +186,13 @@ impl FilterPass {
         if let Some(p) = &self.parents {
             // What the listed dispatches leave unwritten must be empty.
             let ctx = &self.ctx;
-            gpu::clear_mips(ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
-            gpu::clear_mips(ctx, cmd, &volume.moment, 0..self.levels, scope::ANY);
-            gpu::clear_mips(ctx, cmd, &volume.aniso, 0..volume.aniso.desc.mip_levels, scope::ANY);
+            if self.clear {
+                if volume.chains.isotropic {
+                    gpu::clear_mips(ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
+                }
+                gpu::clear_mips(ctx, cmd, &volume.moment, 0..self.levels, scope::ANY);
+                gpu::clear_mips(ctx, cmd, &volume.aniso, 0..volume.aniso.desc.mip_levels, scope::ANY);
+            }
             p.record(cmd, occupied);
             gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         }
@@ -188,7 +201,7 @@ impl FilterPass {
             self.dispatch_level(cmd, 0, occupied);
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
-        if !isotropic && self.parents.is_none() {
+        if !isotropic && self.parents.is_none() && volume.chains.isotropic {
             // Unbuilt levels read as empty, as the listed path's clear leaves them.
             gpu::clear_mips(&self.ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
             gpu::memory_barrier(&self.ctx, cmd, scope::CLEAR_WRITE, r);
@@ -210,7 +223,10 @@ impl FilterPass {
                 for d in 0..6 {
                     let src = if level == 1 { 0 } else { self.offsets[d][level as usize - 2] };
                     let dst = self.offsets[d][level as usize - 1];
-                    self.aniso_pipeline.push(cmd, &[d as u32, (level == 1) as u32, src, dst]);
+                    let size = volume.atlas.chain_at(level - 1);
+                    let axis = volume.atlas.axis as u32;
+                    let push = [d as u32, (level == 1) as u32, axis, src, dst, size.x, size.y, size.z];
+                    self.aniso_pipeline.push(cmd, &push);
                     self.dispatch_level(cmd, level, occupied);
                 }
                 gpu::memory_barrier(&self.ctx, cmd, w, r);

@@ -164,6 +164,7 @@ impl FrameUniforms {
             view: Vec4::new(f.view.code() as f32, level as f32, f.gi_on as u32 as f32, 0.0),
             history_shift: ((f.grid.origin - f.previous_origin) / f.grid.voxel).extend(0.0),
             voxel_dims: f.grid.dims.as_vec3().extend(0.0),
+            aniso_atlas: super::radiance::AtlasLayout::new(f.grid).uniform(),
         }
     }
 }

@@ -5,7 +5,7 @@
 
 use std::fmt;
 
-use super::radiance::RadianceDescs;
+use super::radiance::{Chains, RadianceDescs};
 use crate::gpu::ImageDesc;
 use crate::voxel::bricks;
 use crate::voxel::volume::{extent_of, voxel_desc, VOXEL_TEXTURES};
@@ -22,6 +22,8 @@ pub struct Layout {
     pub pool: Option<u32>,
     /// A full-size history for temporal filtering.
     pub temporal: bool,
+    /// The sampled chains above level 0.
+    pub chains: Chains,
 }
 
 /// One texture or buffer.
@@ -45,44 +47,30 @@ pub struct MemoryReport {
     pub cube_bytes: u64,
 }
 
-/// `desc` over the cube: each axis scaled from the grid's count to the longest, and as many
-/// more mip levels as the cube's chain is longer.
-fn cube_desc(desc: &ImageDesc, grid: &VoxelGrid) -> ImageDesc {
-    let n = grid.longest();
-    let e = desc.extent;
-    let mut c = *desc;
-    c.extent.width = e.width * (n / grid.dims.x);
-    c.extent.height = e.height * (n / grid.dims.y);
-    c.extent.depth = e.depth * (n / grid.dims.z);
-    if desc.mip_levels > 1 {
-        c.mip_levels += (n / grid.shortest()).trailing_zeros();
-    }
-    c
-}
-
 impl MemoryReport {
     /// What a renderer allocates at `grid` in `layout`: the voxel textures, the radiance
     /// volumes, the page table and the occupied-voxel lists. The cube column is the dense
     /// layout over the bounding cube.
     pub fn for_grid(grid: &VoxelGrid, layout: &Layout) -> Self {
-        let Layout { bounces, listed, pool, temporal } = *layout;
-        let dense = extent_of(grid.dims);
-        let stored = pool.map_or(dense, bricks::pool_extent);
-        let named = |extent| {
+        let Layout { bounces, listed, pool, temporal, chains } = *layout;
+        let stored = pool.map_or(extent_of(grid.dims), bricks::pool_extent);
+        // The same textures, dense, over the bounding cube of the grid's longest axis.
+        let cube = VoxelGrid { dims: glam::UVec3::splat(grid.longest()), ..*grid };
+        let named = |grid: &VoxelGrid, extent| {
             let voxel = voxel_desc(extent);
             let mut v: Vec<(&'static str, ImageDesc)> = VOXEL_TEXTURES.iter().map(|&n| (n, voxel)).collect();
-            v.extend(RadianceDescs::new(grid, bounces, extent, temporal).named());
+            v.extend(RadianceDescs::new(grid, bounces, extent, temporal, chains).named());
             v
         };
-        let mut rows: Vec<MemoryRow> = named(stored)
+        let mut rows: Vec<MemoryRow> = named(grid, stored)
             .into_iter()
-            .zip(named(dense))
+            .zip(named(&cube, extent_of(cube.dims)))
             .map(|((name, d), (_, cube))| MemoryRow {
                 name,
                 extent: d.size(),
                 mips: d.mip_levels,
                 bytes: d.texel_bytes(),
-                cube_bytes: cube_desc(&cube, grid).texel_bytes(),
+                cube_bytes: cube.texel_bytes(),
             })
             .collect();
         if pool.is_some() {

@@ -38,7 +38,7 @@ use frame::FrameState;
 pub use frame::View;
 use inject::InjectPass;
 use prepass::DepthPrepass;
-use radiance::RadianceVolume;
+use radiance::{Chains, RadianceVolume};
 use shade::ShadePass;
 use shadow::ShadowPass;
 use temporal::{Source, TemporalBlend};
@@ -250,8 +250,11 @@ impl Renderer {
         // tells), and again with the pool.
         let bounces = scene.settings.gi.bounces > 1;
         let temporal = scene.settings.gi.temporal < 1.0;
-        let need =
-            |pool| memory::MemoryReport::for_grid(&grid, &memory::Layout { bounces, listed, pool, temporal }).bytes;
+        let chains = Chains::read_by(scene.settings.gi.filter, matches!(options.view, View::Radiance(_)));
+        let need = |pool| {
+            let layout = memory::Layout { bounces, listed, pool, temporal, chains };
+            memory::MemoryReport::for_grid(&grid, &layout).bytes
+        };
         crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(1)))?;
         let request = crate::voxel::bricks::StorageRequest {
             storage: options.storage,
@@ -263,7 +266,7 @@ impl Renderer {
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
-        let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal)?;
+        let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal, chains)?;
         let occupied = &voxels.occupied;
         let texel = scene
             .lights
@@ -272,8 +275,10 @@ impl Renderer {
             .unwrap_or(0.0);
         let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, stride, listed)?;
-        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed)?;
-        let filter = FilterPass::new(ctx, &radiance, &voxels, occupied, listed)?;
+        // A fitted grid over the static scene lists the same voxels every frame.
+        let fixed = options.follow.is_none();
+        let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed, fixed)?;
+        let filter = FilterPass::new(ctx, &radiance, &voxels, occupied, listed, fixed)?;
         let bounce = (gi.bounces > 1)
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, occupied, aniso))
             .transpose()?;
@@ -374,7 +379,7 @@ impl Renderer {
                 );
             });
             // The isotropic chain above level 0 only where something reads it.
-            let iso = !aniso || matches!(self.options.view, View::Radiance(_));
+            let iso = self.radiance.chains.isotropic;
             let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, iso);
             t.span(cmd, "filter", filter);
             if let Some(b) = &self.bounce {
@@ -423,6 +428,7 @@ impl Renderer {
             listed: self.filter.is_listed(),
             pool: b.sparse().then_some(b.capacity),
             temporal: self.radiance.has_history(),
+            chains: self.radiance.chains,
         };
         memory::MemoryReport::for_grid(&self.voxels.grid, &layout)
     }

@@ -16,10 +16,13 @@ pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 pub struct RadianceVolume {
     pub injected: Image,
     pub radiance: Image,
-    /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z), stacked along y in
-    /// one atlas with an empty block between neighbours (`config::ANISO_BLOCKS`): level l of the
-    /// volume is their mip l - 1.
+    /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z), stacked in one
+    /// atlas with empty separators between neighbours (`atlas`): level l of the volume is their
+    /// mip l - 1.
     pub aniso: Image,
+    pub atlas: AtlasLayout,
+    /// Which chains above level 0 exist.
+    pub chains: Chains,
     /// Per level-0 voxel, the side its injected light leaves from: the voxel's normal turned
     /// towards the light (packed like the voxel normals, high byte 1), or 0 where the voxel
     /// emits to every side. The directional chains use it so that a lit face is dark when seen
@@ -34,7 +37,30 @@ pub struct RadianceVolume {
     /// w the luminance (mip chain as the radiance's; `common/cone.glsl`, CONE_FLAG_FACING).
     pub moment: Image,
     pub sampler: Sampler,
+    /// The grid's mip levels (the isotropic chain has them all only with `chains.isotropic`).
     pub levels: u32,
+}
+
+/// Which of the sampled chains above level 0 a renderer allocates: those something reads. The
+/// directional model's cones read the isotropic volume's level 0 only, and the isotropic model's
+/// cones no directional chain; unread, they would hold 4.6 and 38.9 MiB on Sponza's 256 grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Chains {
+    /// The isotropic chain's levels above 0: the isotropic model's cones and the radiance view
+    /// read them.
+    pub isotropic: bool,
+    /// The six directional chains: the directional model's cones.
+    pub directional: bool,
+}
+
+impl Chains {
+    pub const ALL: Chains = Chains { isotropic: true, directional: true };
+
+    /// The chains that `filter`'s cones read, and the isotropic one too for a radiance view.
+    pub fn read_by(filter: crate::scene::file::Filter, radiance_view: bool) -> Self {
+        let directional = filter == crate::scene::file::Filter::Aniso;
+        Chains { isotropic: !directional || radiance_view, directional }
+    }
 }
 
 /// The radiance volumes' images over a grid, before allocation (the memory report reads them).
@@ -52,27 +78,28 @@ pub struct RadianceDescs {
 impl RadianceDescs {
     /// Over `grid`, the per-voxel targets (injected light, lit side, bounce target) at
     /// `stored`: the grid's extent, or the brick pool's (voxel::bricks); the history at level
-    /// 0's extent only with `temporal` filtering (else one texel, bound but never read).
-    pub fn new(grid: &VoxelGrid, bounces: bool, stored: vk::Extent3D, temporal: bool) -> Self {
+    /// 0's extent only with `temporal` filtering, and of the sampled chains above level 0 only
+    /// `chains` (else one texel, or level 0 alone: bound but never read).
+    pub fn new(grid: &VoxelGrid, bounces: bool, stored: vk::Extent3D, temporal: bool, chains: Chains) -> Self {
         let levels = grid.mip_levels();
         let extent = extent_of(grid.dims);
         let storage =
             vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
         let sampled = storage | vk::ImageUsageFlags::SAMPLED;
         let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
-        let chain = (grid.dims / 2).max(glam::UVec3::ONE);
-        let atlas = vk::Extent3D { width: chain.x, height: chain.y * crate::config::ANISO_BLOCKS, depth: chain.z };
+        let atlas = AtlasLayout::new(grid).extent();
+        let texel = vk::Extent3D { width: 1, height: 1, depth: 1 };
         let pooled = |format, usage| ImageDesc::d3_extent(format, stored, usage);
         RadianceDescs {
             injected: pooled(RADIANCE_FORMAT, storage),
-            radiance: d3(sampled).mips(levels),
-            aniso: ImageDesc::d3_extent(RADIANCE_FORMAT, atlas, sampled).mips((levels - 1).max(1)),
-            lit_side: pooled(crate::voxel::volume::VOXEL_FORMAT, storage),
-            history: if temporal {
-                d3(sampled)
+            radiance: d3(sampled).mips(if chains.isotropic { levels } else { 1 }),
+            aniso: if chains.directional {
+                ImageDesc::d3_extent(RADIANCE_FORMAT, atlas, sampled).mips((levels - 1).max(1))
             } else {
-                ImageDesc::d3_extent(RADIANCE_FORMAT, vk::Extent3D { width: 1, height: 1, depth: 1 }, sampled)
+                ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled)
             },
+            lit_side: pooled(crate::voxel::volume::VOXEL_FORMAT, storage),
+            history: if temporal { d3(sampled) } else { ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled) },
             moment: d3(sampled).mips(levels),
             bounced: bounces.then(|| pooled(RADIANCE_FORMAT, storage)),
         }
@@ -96,7 +123,13 @@ impl RadianceDescs {
 impl RadianceVolume {
     /// Volumes over `grid`'s dims, the per-voxel targets in `voxels`' layout; `bounces`: also
     /// the target of the voxel-space bounce pass; `temporal`: a full-size history.
-    pub fn new(ctx: &Arc<Context>, voxels: &crate::voxel::VoxelVolume, bounces: bool, temporal: bool) -> Result<Self> {
+    pub fn new(
+        ctx: &Arc<Context>,
+        voxels: &crate::voxel::VoxelVolume,
+        bounces: bool,
+        temporal: bool,
+        chains: Chains,
+    ) -> Result<Self> {
         let grid = &voxels.grid;
         let props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, RADIANCE_FORMAT) };
         let need = vk::FormatFeatureFlags::STORAGE_IMAGE | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
@@ -107,8 +140,8 @@ impl RadianceVolume {
                 needed_by: "the radiance volume",
             });
         }
-        let d = RadianceDescs::new(grid, bounces, voxels.bricks.extent(grid), temporal);
-        let levels = d.radiance.mip_levels;
+        let d = RadianceDescs::new(grid, bounces, voxels.bricks.extent(grid), temporal, chains);
+        let levels = grid.mip_levels();
         let mut images = d
             .named()
             .into_iter()
@@ -128,6 +161,8 @@ impl RadianceVolume {
             injected,
             radiance,
             aniso,
+            atlas: AtlasLayout::new(grid),
+            chains,
             lit_side,
             history,
             bounced,
@@ -176,9 +211,96 @@ impl RadianceVolume {
         set.write_images(binding + 1, sampled, &[self.aniso_info()]);
         set.write_images(binding + 2, sampled, &[self.moment_info()]);
     }
+}
 
-    /// Where directional chain `d` starts in the atlas at chain mip `mip` (texels along y).
-    pub fn chain_offset(&self, d: u32, mip: u32) -> u32 {
-        2 * d * self.aniso.extent_at(mip).height / crate::config::ANISO_BLOCKS
+/// Where the six directional chains lie in their atlas. They are stacked along the chains'
+/// longest axis, each followed by an empty separator, so that trilinear filtering at every mip
+/// meets zeros at a chain's edge, as at the volume's border. A separator one texel thick at the
+/// coarsest mip suffices, since a sample's filter reaches at most one texel past its chain (the
+/// cones stop half a texel outside the volume): 2^(mips - 1) texels at mip 0. Stacking along the
+/// longest axis keeps those separators short against the chains: Sponza's 256 × 128 × 128 grid
+/// has chains of 128 × 64 × 64 and seven mips, so stacked along x its separators are half a
+/// chain long; along y they would be a whole chain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AtlasLayout {
+    /// The axis the chains are stacked along (0 x, 1 y, 2 z).
+    pub axis: usize,
+    /// One chain's extent at mip 0.
+    pub chain: glam::UVec3,
+    /// From one chain's start to the next's along `axis` at mip 0 (texels): the chain and its
+    /// separator.
+    pub pitch: u32,
+}
+
+impl AtlasLayout {
+    pub fn new(grid: &VoxelGrid) -> Self {
+        let chain = (grid.dims / 2).max(glam::UVec3::ONE);
+        let axis = (0..3).max_by_key(|&a| (chain[a], std::cmp::Reverse(a))).expect("three axes");
+        let mips = (grid.mip_levels() - 1).max(1);
+        let separator = (1u32 << (mips - 1)).min(chain[axis]);
+        AtlasLayout { axis, chain, pitch: chain[axis] + separator }
+    }
+
+    /// The atlas' extent at mip 0: six chains and the five separators between them.
+    pub fn extent(&self) -> vk::Extent3D {
+        let mut e = self.chain;
+        e[self.axis] = self.extent_along();
+        extent_of(e)
+    }
+
+    /// Where chain `d` starts along the stacking axis at chain mip `mip` (texels).
+    pub fn offset(&self, d: u32, mip: u32) -> u32 {
+        (d * self.pitch) >> mip
+    }
+
+    /// The chain's extent at chain mip `mip`.
+    pub fn chain_at(&self, mip: u32) -> glam::UVec3 {
+        (self.chain >> mip).max(glam::UVec3::ONE)
+    }
+
+    /// For the shaders (`FrameUniforms::aniso_atlas`, common/cone.glsl): the stacking axis, the
+    /// pitch and the atlas' length along it, the last two over one chain's length.
+    pub fn uniform(&self) -> glam::Vec4 {
+        let n = self.chain[self.axis] as f32;
+        glam::Vec4::new(self.axis as f32, self.pitch as f32 / n, self.extent_along() as f32 / n, 0.0)
+    }
+
+    fn extent_along(&self) -> u32 {
+        5 * self.pitch + self.chain[self.axis]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Aabb;
+    use glam::{UVec3, Vec3};
+
+    #[test]
+    fn atlas_chains_stack_along_the_longest_axis_with_separators_aligned_at_every_mip() {
+        for dims in [UVec3::new(256, 128, 128), UVec3::splat(64), UVec3::new(32, 128, 16), UVec3::new(16, 16, 512)] {
+            let bounds = Aabb { min: Vec3::ZERO, max: dims.as_vec3() };
+            let grid = VoxelGrid::fit_dims(&bounds, dims).unwrap();
+            let a = AtlasLayout::new(&grid);
+            let mips = grid.mip_levels() - 1;
+            assert_eq!(a.chain[a.axis], a.chain.max_element(), "{dims}");
+            let separator = a.pitch - a.chain[a.axis];
+            // One texel at the coarsest mip, and every chain's start on a texel at every mip.
+            assert_eq!(separator, 1 << (mips - 1), "{dims}");
+            for m in 0..mips {
+                for d in 0..6 {
+                    assert_eq!(a.offset(d, m) << m, d * a.pitch, "{dims}: chain {d} at mip {m}");
+                }
+            }
+            let e = a.extent();
+            assert_eq!(
+                e.width * e.height * e.depth,
+                a.chain.element_product() / a.chain[a.axis] * (5 * a.pitch + a.chain[a.axis])
+            );
+        }
+        // Sponza's grid: separators half a chain long (a whole one stacked along y).
+        let bounds = Aabb { min: Vec3::ZERO, max: Vec3::new(2.0, 1.0, 1.0) };
+        let a = AtlasLayout::new(&VoxelGrid::fit_dims(&bounds, UVec3::new(256, 128, 128)).unwrap());
+        assert_eq!((a.axis, a.pitch, a.extent().width), (0, 192, 1088));
     }
 }

@@ -33,16 +33,22 @@ pub struct TemporalBlend {
     dims: [u32; 3],
     /// Over the occupied voxels.
     listed: bool,
+    /// Clear level 0 before a listed blend (not where the occupied set is fixed, see `new`).
+    clear: bool,
 }
 
 impl TemporalBlend {
     /// `listed`: over the voxels of `voxels`' occupied list (its sources stored as its voxels).
+    /// `fixed`: the list holds the same voxels every frame (a fitted grid: the scene is static),
+    /// so the voxels it leaves unwritten stay as the volume was created, empty, and need no
+    /// clear; a moving grid's would keep the light of voxels its geometry left.
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
         radiance: &RadianceVolume,
         voxels: &crate::voxel::VoxelVolume,
         listed: bool,
+        fixed: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -83,7 +89,14 @@ impl TemporalBlend {
             &[scene.set.layout, sets.layout],
             4,
         )?;
-        Ok(TemporalBlend { ctx: ctx.clone(), pipeline, sets, dims: radiance.radiance.desc.size(), listed })
+        Ok(TemporalBlend {
+            ctx: ctx.clone(),
+            pipeline,
+            sets,
+            dims: radiance.radiance.desc.size(),
+            listed,
+            clear: listed && !fixed,
+        })
     }
 
     /// Keeps the previous frame's level 0 for the blend to reproject (before the first blend).
@@ -106,7 +119,7 @@ impl TemporalBlend {
             Source::Injected => self.sets.sets[0],
             Source::Bounced => self.sets.sets[1],
         };
-        if self.listed {
+        if self.clear {
             gpu::clear_mips(&self.ctx, cmd, &radiance.radiance, 0..1, scope::ANY);
             gpu::memory_barrier(&self.ctx, cmd, scope::CLEAR_WRITE, scope::COMPUTE_RW);
         }

@@ -47,6 +47,8 @@ pub struct FrameUniforms {
     pub history_shift: Vec4,
     /// xyz: voxels along each axis.
     pub voxel_dims: Vec4,
+    /// The directional chains' atlas (render::radiance::AtlasLayout::uniform).
+    pub aniso_atlas: Vec4,
 }
 
 pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [

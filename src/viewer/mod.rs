@@ -265,8 +265,13 @@ impl App {
             }
             KeyCode::KeyC => {
                 let at = VIEWS.iter().position(|v| *v == options.view).unwrap_or(0);
-                r.renderer.options.view = VIEWS[(at + 1) % VIEWS.len()];
-                println!("view: {:?}", r.renderer.options.view);
+                options.view = VIEWS[(at + 1) % VIEWS.len()];
+                r.renderer.options.view = options.view;
+                println!("view: {:?}", options.view);
+                // The directional model keeps no isotropic chain above level 0 until a view reads it.
+                if matches!(options.view, View::Radiance(_)) && !r.renderer.radiance.chains.isotropic {
+                    Self::rebuild(r, options)?;
+                }
             }
             KeyCode::KeyG => {
                 r.renderer.options.gi = !options.gi;

@@ -171,6 +171,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
         listed: true,
         pool,
         temporal: scene.settings.gi.temporal < 1.0,
+        chains: vct::render::radiance::Chains::read_by(scene.settings.gi.filter, false),
     };
     println!("{}", vct::render::memory::MemoryReport::for_grid(&g, &layout));
     if let Some(b) = run.bricks {
