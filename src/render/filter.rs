@@ -171,7 +171,8 @@ impl FilterPass {
     /// Builds the isotropic chain (when `isotropic`: the cones of the isotropic model and the
     /// radiance view read it; the directional model's cones read only its level 0), the moment
     /// (when `moment`) and, when `anisotropic`, the six directional chains; `occupied` is this
-    /// frame's list of occupied voxels (its dispatch arguments written).
+    /// frame's list of occupied voxels (its dispatch arguments written); `first_frame`: the
+    /// renderer's first (the parent lists of a fixed occupied set are built then only).
     pub fn record(
         &self,
         cmd: vk::CommandBuffer,
@@ -180,10 +181,13 @@ impl FilterPass {
         anisotropic: bool,
         moment: bool,
         isotropic: bool,
+        first_frame: bool,
     ) {
         let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         let per_chain = self.levels as usize - 1;
-        if let Some(p) = &self.parents {
+        // A fixed occupied set has the same parents every frame: they are listed once.
+        let relist = self.clear || first_frame;
+        if let Some(p) = self.parents.as_ref().filter(|_| relist) {
             // What the listed dispatches leave unwritten must be empty.
             let ctx = &self.ctx;
             if self.clear {

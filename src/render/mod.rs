@@ -380,7 +380,8 @@ impl Renderer {
             });
             // The isotropic chain above level 0 only where something reads it.
             let iso = self.radiance.chains.isotropic;
-            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, iso);
+            let first = self.frame_index.get() == 0;
+            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, iso, first);
             t.span(cmd, "filter", filter);
             if let Some(b) = &self.bounce {
                 t.span(cmd, "bounces", || {
