@@ -68,7 +68,8 @@ impl FilterPass {
         let list = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, c);
         let (st, sb) = (vk::DescriptorType::STORAGE_IMAGE, vk::DescriptorType::STORAGE_BUFFER);
         let dims = volume.radiance.desc.size();
-        let parents = listed.then(|| ParentLists::new(ctx, dims, volume.levels, occupied)).transpose()?;
+        let bricks = voxels.bricks.sparse().then(|| voxels.bricks.capacity.saturating_sub(1) as u64);
+        let parents = listed.then(|| ParentLists::new(ctx, dims, volume.levels, occupied, bricks)).transpose()?;
         // Level l's list (the occupied voxels' own list stands in when the dispatch is dense:
         // the binding must hold a buffer).
         let level_list = |level: u32| parents.as_ref().map_or(&occupied.list, |p| &p.levels[level as usize - 1].list);

@@ -86,14 +86,15 @@ impl MemoryReport {
         let list = crate::voxel::occupied::list_bytes;
         let occupied = list(pool.map_or(grid.voxel_count() as u64, |p| bricks::voxel_room(grid, p)));
         if listed {
-            let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels());
+            let bricks = pool.map(|p| p.saturating_sub(1) as u64);
+            let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels(), bricks);
             let n = grid.longest();
             rows.push(MemoryRow {
                 name: "occupied texel lists (mips)",
                 extent: [parents as u32, 1, 1],
                 mips: 1,
                 bytes: parents,
-                cube_bytes: super::occupancy::parent_list_bytes([n; 3], 32 - n.leading_zeros()),
+                cube_bytes: super::occupancy::parent_list_bytes([n; 3], 32 - n.leading_zeros(), None),
             });
         }
         rows.push(MemoryRow {

@@ -31,24 +31,50 @@ fn mark_words(texels: u64) -> u64 {
     texels.div_ceil(32)
 }
 
-/// Bytes of every level's list and bit set, from level 1, for level-0 extent `dims` with
-/// `levels` mip levels.
-pub fn parent_list_bytes(dims: [u32; 3], levels: u32) -> u64 {
+/// Room in each level's list, from level 1, for level-0 extent `dims` with `levels` mip levels:
+/// every texel of the level, or with sparse storage no more than the pool's `bricks`. A texel
+/// of a level whose texels are at least a brick wide holds whole bricks, and the voxelizers list
+/// only voxels of claimed bricks (common/voxel.glsl), so such a level has at most one occupied
+/// texel a brick.
+pub fn parent_capacities(dims: [u32; 3], levels: u32, bricks: Option<u64>) -> Vec<u64> {
     (1..levels)
         .map(|l| {
             let texels: u64 = dims.iter().map(|&d| (d >> l).max(1) as u64).product();
-            list_bytes(texels) + 4 * mark_words(texels)
+            match bricks {
+                Some(b) if 1u32 << l >= crate::config::BRICK_SIZE => texels.min(b),
+                _ => texels,
+            }
+        })
+        .collect()
+}
+
+/// Bytes of every level's list and bit set (as [`parent_capacities`]).
+pub fn parent_list_bytes(dims: [u32; 3], levels: u32, bricks: Option<u64>) -> u64 {
+    (1..levels)
+        .zip(parent_capacities(dims, levels, bricks))
+        .map(|(l, room)| {
+            let texels: u64 = dims.iter().map(|&d| (d >> l).max(1) as u64).product();
+            list_bytes(room) + 4 * mark_words(texels)
         })
         .sum()
 }
 
 impl ParentLists {
-    /// Lists for the mip levels 1..`levels` of a level-0 extent `dims`, fed by `base`.
-    pub fn new(ctx: &Arc<Context>, dims: [u32; 3], levels: u32, base: &OccupiedVoxels) -> Result<Self> {
+    /// Lists for the mip levels 1..`levels` of a level-0 extent `dims`, fed by `base`; `bricks`:
+    /// the brick pool's claimable slots with sparse storage (see [`parent_capacities`]).
+    pub fn new(
+        ctx: &Arc<Context>,
+        dims: [u32; 3],
+        levels: u32,
+        base: &OccupiedVoxels,
+        bricks: Option<u64>,
+    ) -> Result<Self> {
         let sizes: Vec<[u32; 3]> = (1..levels).map(|l| dims.map(|d| (d >> l).max(1))).collect();
         let texels = |s: &[u32; 3]| s.iter().map(|&d| d as u64).product::<u64>();
-        let levels_: Vec<OccupiedVoxels> =
-            sizes.iter().map(|s| OccupiedVoxels::new(ctx, texels(s))).collect::<Result<_>>()?;
+        let levels_: Vec<OccupiedVoxels> = parent_capacities(dims, levels, bricks)
+            .into_iter()
+            .map(|room| OccupiedVoxels::new(ctx, room))
+            .collect::<Result<_>>()?;
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
         let marks: Vec<Buffer> = sizes
             .iter()
