@@ -171,13 +171,13 @@ fn check_rows(r: &Renderer, m: &vct::render::memory::MemoryReport) {
 
 #[test]
 fn the_heap_check_admits_what_allocates_and_names_what_cannot() {
-    // Lavapipe reports a 2 GiB heap: a dense 256³ Cornell box (951 MiB) allocates, 512³ (7.5 GiB)
+    // Lavapipe reports a 2 GiB heap: a dense 256³ Cornell box (805 MiB) allocates, 512³ (6.3 GiB)
     // cannot and is told before the allocator fails on one texture of it.
     let ctx = common::context();
     let scene = Scene::embedded_default().unwrap();
     let big = RenderOptions { dims: Some(UVec3::splat(256)), storage: Storage::Dense, ..Default::default() };
     let r = Renderer::new(&ctx, scene.clone(), big).unwrap();
-    assert!(r.memory().mib() > 900.0);
+    assert!(r.memory().mib() > 700.0);
     drop(r);
     let huge = RenderOptions { dims: Some(UVec3::splat(512)), storage: Storage::Dense, ..Default::default() };
     let e = Renderer::new(&ctx, scene, huge).err().expect("a 512³ grid fitted the heap").to_string();

@@ -16,7 +16,7 @@
 //   count a texel's partial cover more than once (a small emitter lights the floor below it up
 //   to twice too brightly). Off by default;
 // - with CONE_FLAG_FACING, a sample's light is hidden by the share of it that leaves its surfaces
-//   away from the cone: the radiance moment volume holds, per texel, the luminance-weighted sum of
+//   away from the cone: the radiance moment volume (from level 1) holds, per texel, the luminance-weighted sum of
 //   the lit sides' normals and the luminance, and light that all leaves into one hemisphere
 //   (moment length equal to the luminance) cannot reach a cone behind that hemisphere. This is
 //   what keeps the lit outside of a thin wall from shining into the room through the
@@ -100,6 +100,12 @@ bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, Cone
     return all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
 }
 
+// The radiance moment at a sample of `level`: the moment volume starts at level 1 (its mip 0;
+// gi/moment.comp), and a sample finer than that reads level 1.
+vec4 sample_moment(sampler3D moment, vec3 pos, float level) {
+    return textureLod(moment, pos, max(level - 1.0, 0.0));
+}
+
 // The share of light with radiance moment `m` (xyz: sum of luminance times lit normal; w:
 // luminance) that can leave towards a cone travelling along `dir`: light whose surfaces all face
 // away (moment as long as the luminance) is hidden, a mixture in proportion.
@@ -156,7 +162,7 @@ vec4 march_iso(sampler3D volume, sampler3D moment, vec3 uvw, vec3 normal, vec3 d
     for (int i = 0; i < p.steps && m.alpha < 0.95; i++) {
         if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
         vec4 s = textureLod(volume, pos, level);
-        if (face) s.rgb *= facing(textureLod(moment, pos, level), dir);
+        if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
         accumulate(m, s, level, step, (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u);
     }
     return finish(m);
@@ -182,7 +188,7 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
     for (; i < p.steps && m.alpha < 0.95; i++) {
         inside = next_sample(m, start, dir, tan_half, rise, p, pos, level, step);
         if (!inside || level >= 1.0) break;
-        vec4 mo = face ? textureLod(moment, pos, level) : vec4(0.0);
+        vec4 mo = face ? sample_moment(moment, pos, level) : vec4(0.0);
         vec4 iso = textureLod(volume, pos, 0.0);
         if (face) iso.rgb *= facing(mo, dir);
         vec4 s = mix(iso, sample_chains(atlas, pos, w, chain, 1.0, face ? facing_across(mo, dir) : vec3(1.0), p.atlas), level);
@@ -190,7 +196,7 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
     }
     for (; inside && i < p.steps && m.alpha < 0.95; i++) {
         if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
-        vec3 share = face ? facing_across(textureLod(moment, pos, level), dir) : vec3(1.0);
+        vec3 share = face ? facing_across(sample_moment(moment, pos, level), dir) : vec3(1.0);
         accumulate(m, sample_chains(atlas, pos, w, chain, level, share, p.atlas), level, step, correct);
     }
     return finish(m);

@@ -1,8 +1,11 @@
 #version 460
-// The radiance moment's level 0 (common/cone.glsl, CONE_FLAG_FACING): per voxel, the luminance
-// of the light it reflects times its lit side (the voxel normal turned towards the light, or the
-// side it gathered bounced light on), and its whole luminance. Emitted light leaves to every side
-// and adds to the luminance only. The mip filter then averages it like the radiance.
+// The radiance moment's level 1 (common/cone.glsl, CONE_FLAG_FACING): the average over a texel's
+// eight voxels of the luminance of the light each reflects times its lit side (the voxel normal
+// turned towards the light, or the side it gathered bounced light on), and of its whole
+// luminance. Emitted light leaves to every side and adds to the luminance only. The mip filter
+// then averages it like the radiance. The moment has no level 0: the cones read it from level 1
+// (changing images by FLIP 0.0001-0.003 against a level 0 blended in, docs/benchmarks.md), and
+// level 0 took as much memory as the radiance's.
 #include "config.h"
 #include "rgb9e5.glsl"
 #define OCCUPIED_SET 0
@@ -17,14 +20,13 @@ layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D moment;
 #define BRICKS_SET 0
 #define BRICKS_BINDING 5
 #include "bricks.glsl"
-// One invocation per occupied voxel (the rest of the level is cleared: empty voxels have none).
+// One invocation per occupied texel of level 1 (the rest of the level is empty).
 layout(constant_id = 0) const bool LISTED = false;
 
 const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
 
-void main() {
-    ivec3 v;
-    if (!listed_or_dense(LISTED, imageSize(moment), v)) return;
+// Voxel `v`'s moment: xyz the luminance it reflects times its lit side, w its luminance.
+vec4 voxel_moment(ivec3 v) {
     float total = dot(imageLoad(radiance, v).rgb, LUMA);
     uint side = imageLoad(lit_side, stored_at(v)).r;
     vec3 m = vec3(0.0);
@@ -33,5 +35,15 @@ void main() {
         float emitted = dot(decode_rgb9e5(imageLoad(voxel_emission, stored_at(v)).r), LUMA);
         m = normalize(n) * max(total - emitted, 0.0);
     }
-    imageStore(moment, v, vec4(m, total));
+    return vec4(m, total);
+}
+
+void main() {
+    ivec3 v;
+    if (!listed_or_dense(LISTED, imageSize(moment), v)) return;
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < 8; i++) {
+        sum += voxel_moment(2 * v + ivec3(i & 1, (i >> 1) & 1, i >> 2));
+    }
+    imageStore(moment, v, sum * 0.125);
 }

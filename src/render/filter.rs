@@ -1,6 +1,6 @@
 //! Radiance filtering (Freed 2018 §4.4): the full mip chain of the radiance volume, one
 //! compute dispatch per level, each voxel the average of its 8 children, with a barrier
-//! between levels; the radiance moment (level 0 from the radiance and each voxel's lit side,
+//! between levels; the radiance moment (level 1 from the radiance and each voxel's lit side,
 //! then the same average); optionally also six directional (anisotropic) chains (Crassin et
 //! al. 2011).
 //!
@@ -76,14 +76,15 @@ impl FilterPass {
         let spec = [listed as u32];
         let per_chain = volume.levels.saturating_sub(1);
         let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1), list(2)], 2 * per_chain)?;
-        for (k, chain) in [&volume.radiance, &volume.moment].into_iter().enumerate() {
-            if chain.desc.mip_levels < volume.levels {
+        // The moment's chain starts at level 1 (its mip 0, which gi/moment.comp writes).
+        for (k, chain, first) in [(0, &volume.radiance, 0), (1, &volume.moment, 1)] {
+            if chain.desc.mip_levels + first < volume.levels {
                 continue; // the isotropic chain, unallocated above level 0: never built
             }
-            for level in 1..volume.levels {
+            for level in first + 1..volume.levels {
                 let set = k * per_chain as usize + level as usize - 1;
-                sets.write_images_at(set, 0, st, &[storage_info(chain.mip_view(level - 1))]);
-                sets.write_images_at(set, 1, st, &[storage_info(chain.mip_view(level))]);
+                sets.write_images_at(set, 0, st, &[storage_info(chain.mip_view(level - 1 - first))]);
+                sets.write_images_at(set, 1, st, &[storage_info(chain.mip_view(level - first))]);
                 sets.write_buffer_at(set, 2, sb, level_list(level));
             }
         }
@@ -104,7 +105,7 @@ impl FilterPass {
         moment_set.write_storage(1, volume.lit_side.view.raw);
         moment_set.write_storage(2, voxels.emission.view.raw);
         moment_set.write_images(3, st, &[storage_info(volume.moment.mip_view(0))]);
-        moment_set.write_buffer(4, sb, &occupied.list);
+        moment_set.write_buffer(4, sb, level_list(1));
         moment_set.write_buffer(5, sb, &voxels.bricks.table);
         let stored = voxels.bricks.spec(listed as u32);
         let moment_pipeline = Pipeline::compute(
@@ -195,7 +196,7 @@ impl FilterPass {
                 if volume.chains.isotropic {
                     gpu::clear_mips(ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
                 }
-                gpu::clear_mips(ctx, cmd, &volume.moment, 0..self.levels, scope::ANY);
+                gpu::clear_mips(ctx, cmd, &volume.moment, 0..volume.moment.desc.mip_levels, scope::ANY);
                 gpu::clear_mips(ctx, cmd, &volume.aniso, 0..volume.aniso.desc.mip_levels, scope::ANY);
             }
             p.record(cmd, occupied);
@@ -203,7 +204,7 @@ impl FilterPass {
         }
         if moment {
             self.moment_pipeline.bind(cmd, &[self.moment_set.raw]);
-            self.dispatch_level(cmd, 0, occupied);
+            self.dispatch_level(cmd, 1, occupied);
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
         if !isotropic && self.parents.is_none() && volume.chains.isotropic {
@@ -216,7 +217,7 @@ impl FilterPass {
                 self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
                 self.dispatch_level(cmd, level, occupied);
             }
-            if moment {
+            if moment && level > 1 {
                 self.pipeline.bind(cmd, &[self.sets.sets[per_chain + level as usize - 1]]);
                 self.dispatch_level(cmd, level, occupied);
             }

@@ -34,7 +34,8 @@ pub struct RadianceVolume {
     /// Each extra bounce's level 0 before it is blended in (only with more than one bounce).
     pub bounced: Option<Image>,
     /// Where each texel's light leaves to: xyz the luminance-weighted sum of lit-side normals,
-    /// w the luminance (mip chain as the radiance's; `common/cone.glsl`, CONE_FLAG_FACING).
+    /// w the luminance (`common/cone.glsl`, CONE_FLAG_FACING): the radiance's chain from level
+    /// 1, its mip m level m + 1 (gi/moment.comp).
     pub moment: Image,
     pub sampler: Sampler,
     /// The grid's mip levels (the isotropic chain has them all only with `chains.isotropic`).
@@ -88,6 +89,7 @@ impl RadianceDescs {
         let sampled = storage | vk::ImageUsageFlags::SAMPLED;
         let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
         let atlas = AtlasLayout::new(grid).extent();
+        let chain = (grid.dims / 2).max(glam::UVec3::ONE);
         let texel = vk::Extent3D { width: 1, height: 1, depth: 1 };
         let pooled = |format, usage| ImageDesc::d3_extent(format, stored, usage);
         RadianceDescs {
@@ -100,7 +102,7 @@ impl RadianceDescs {
             },
             lit_side: pooled(crate::voxel::volume::VOXEL_FORMAT, storage),
             history: if temporal { d3(sampled) } else { ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled) },
-            moment: d3(sampled).mips(levels),
+            moment: ImageDesc::d3_extent(RADIANCE_FORMAT, extent_of(chain), sampled).mips((levels - 1).max(1)),
             bounced: bounces.then(|| pooled(RADIANCE_FORMAT, storage)),
         }
     }

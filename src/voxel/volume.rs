@@ -78,6 +78,27 @@ pub fn check_fits(ctx: &Context, grid: &VoxelGrid, need: u64) -> Result<()> {
     Ok(())
 }
 
+/// An error naming the grid and storage when its occupied-voxel list, room for `voxels`, would
+/// pass the device's largest storage buffer (lavapipe's is 128 MiB: a dense 512³ grid's list
+/// needs 512 MiB; sparse storage sizes it by the occupied bricks).
+fn check_list(ctx: &Context, grid: &VoxelGrid, voxels: u64) -> Result<()> {
+    let bytes = crate::voxel::occupied::list_bytes(voxels);
+    let limit = ctx.info.limits.max_storage_buffer_range as u64;
+    if bytes > limit {
+        return Err(Error::param(
+            "storage",
+            format!(
+                "a {} grid lists up to {voxels} occupied voxels ({} MiB), past the device's largest storage buffer \
+                 ({} MiB): use --storage sparse, whose list follows the occupied bricks, or a smaller grid",
+                grid.dims_label(),
+                bytes >> 20,
+                limit >> 20
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The three voxel textures in `bricks`' layout, after the heap check.
 fn textures(ctx: &Arc<Context>, grid: &VoxelGrid, bricks: &Bricks) -> Result<[Image; 3]> {
     let desc = voxel_desc(bricks.extent(grid));
@@ -91,6 +112,7 @@ impl VoxelVolume {
     /// included).
     pub fn new(ctx: &Arc<Context>, grid: VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
         let bricks = Bricks::new(ctx, &grid, storage, capacity)?;
+        check_list(ctx, &grid, bricks.voxel_room(&grid))?;
         let [albedo, normal, emission] = textures(ctx, &grid, &bricks)?;
         Ok(VoxelVolume {
             ctx: ctx.clone(),
@@ -109,6 +131,7 @@ impl VoxelVolume {
     pub fn resize_pool(&mut self, capacity: u32) -> Result<()> {
         let ctx = &self.ctx;
         let bricks = Bricks::new(ctx, &self.grid, self.bricks.storage, capacity)?;
+        check_list(ctx, &self.grid, bricks.voxel_room(&self.grid))?;
         [self.albedo, self.normal, self.emission] = textures(ctx, &self.grid, &bricks)?;
         self.occupied.resize(bricks.voxel_room(&self.grid))?;
         self.bricks = bricks;
