@@ -40,9 +40,13 @@ fn every_mip_level_is_the_box_filter_of_the_level_below() {
     scene.settings.gi.filter = vct::scene::file::Filter::Iso;
     let r = Renderer::new(&ctx, scene, options(View::Full, 32)).unwrap();
     r.render().unwrap();
-    let vol = &r.radiance.radiance;
-    let levels: Vec<Vec<f32>> = (0..r.radiance.levels)
-        .map(|l| f16s(&gpu::read_image(&ctx, vol, vk::ImageLayout::GENERAL, l).unwrap()))
+    // Level 0 is stored as the voxels are (a brick pool by default), the chain above it dense.
+    let chain = &r.radiance.chain;
+    let levels: Vec<Vec<f32>> = std::iter::once(f16s(&r.voxels.read_dense(r.radiance.level0()).unwrap()))
+        .chain(
+            (1..r.radiance.levels)
+                .map(|l| f16s(&gpu::read_image(&ctx, chain, vk::ImageLayout::GENERAL, l - 1).unwrap())),
+        )
         .collect();
     assert!(levels[0].iter().any(|&v| v > 0.0), "level 0 is empty: nothing was injected");
     for l in 1..levels.len() {
@@ -79,7 +83,7 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
     scene.settings.gi.filter = vct::scene::file::Filter::Aniso;
     let r = Renderer::new(&ctx, scene, options(View::Full, 16)).unwrap();
     r.render().unwrap();
-    let base = f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
+    let base = f16s(&r.voxels.read_dense(r.radiance.level0()).unwrap());
     // Stored as the voxels are (a brick pool by default): read back as the grid.
     let sides: Vec<u32> = bytemuck::pod_collect_to_vec(&r.voxels.read_dense(&r.radiance.lit_side).unwrap());
     let lit_sides = sides.iter().filter(|&&s| s >> 24 != 0).count();
@@ -502,8 +506,7 @@ fn temporal_blend_reprojects_history_when_the_volume_moves() {
     // A centre half a voxel (4 m / 32) off the snapping lattice, so one voxel moves the origin by one.
     let centre = Vec3::new(0.0625, 2.8125, 0.0625);
     let step = Vec3::X * 0.125;
-    let level0 =
-        |r: &Renderer| f16s(&gpu::read_image(&ctx, &r.radiance.radiance, vk::ImageLayout::GENERAL, 0).unwrap());
+    let level0 = |r: &Renderer| f16s(&r.voxels.read_dense(r.radiance.level0()).unwrap());
     let converged = |at: Vec3| {
         let mut r = Renderer::new(&ctx, scene.clone(), o).unwrap();
         r.follow(at).unwrap();

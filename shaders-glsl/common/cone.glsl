@@ -38,7 +38,11 @@ struct ConeParams {
     float surface;     // how far the receiving surface's own voxels may reach above the start's
                        // plane (voxels): half a voxel for a point on the surface
     vec3 atlas;        // the directional chains' atlas (frame.glsl, aniso_atlas)
+    float chain_base;  // the isotropic chain's mip that holds level 1 (0: a chain of its own)
 };
+
+// Level 0 at `pos`, trilinearly filtered (common/level0.glsl, or the includer's own).
+vec4 level0_sample(sampler3D level0, vec3 pos);
 
 // Anisotropic sample (Crassin et al. 2011): the three directional chains facing the cone, weighted
 // by the squared direction components `w`; `chain` holds each axis's chain, stacked in the atlas
@@ -151,19 +155,33 @@ vec4 finish(March m) {
     return m.alpha >= 0.95 ? vec4(m.color / m.alpha, 1.0) : vec4(m.color, m.alpha);
 }
 
-// The thesis' march through the isotropic volume.
-vec4 march_iso(sampler3D volume, sampler3D moment, vec3 uvw, vec3 normal, vec3 dir, float tan_half, ConeParams p) {
+// The thesis' march through the isotropic volume: level 0 in `volume`, the levels above it in
+// `chain`. Below level 1 level 0 is blended in; that phase is a loop of its own, so a CPU driver
+// does not read level 0 at every step (it flattens a branch inside a loop into running both
+// sides).
+vec4 march_iso(sampler3D volume, sampler3D chain, sampler3D moment, vec3 uvw, vec3 normal, vec3 dir, float tan_half,
+               ConeParams p) {
     bool face = (p.flags & CONE_FLAG_FACING) != 0u;
+    bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
     vec3 start = uvw + p.bias * normal / p.dims;
     float rise = dot(dir, normal);
     March m = March(vec3(0.0), 0.0, p.start);
     vec3 pos;
     float level, step;
-    for (int i = 0; i < p.steps && m.alpha < 0.95; i++) {
-        if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
-        vec4 s = textureLod(volume, pos, level);
+    int i = 0;
+    bool inside = true;
+    for (; i < p.steps && m.alpha < 0.95; i++) {
+        inside = next_sample(m, start, dir, tan_half, rise, p, pos, level, step);
+        if (!inside || level >= 1.0) break;
+        vec4 s = mix(level0_sample(volume, pos), textureLod(chain, pos, p.chain_base), level);
         if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
-        accumulate(m, s, level, step, (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u);
+        accumulate(m, s, level, step, correct);
+    }
+    for (; inside && i < p.steps && m.alpha < 0.95; i++) {
+        if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
+        vec4 s = textureLod(chain, pos, level - 1.0 + p.chain_base);
+        if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
+        accumulate(m, s, level, step, correct);
     }
     return finish(m);
 }
@@ -189,7 +207,7 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
         inside = next_sample(m, start, dir, tan_half, rise, p, pos, level, step);
         if (!inside || level >= 1.0) break;
         vec4 mo = face ? sample_moment(moment, pos, level) : vec4(0.0);
-        vec4 iso = textureLod(volume, pos, 0.0);
+        vec4 iso = level0_sample(volume, pos);
         if (face) iso.rgb *= facing(mo, dir);
         vec4 s = mix(iso, sample_chains(atlas, pos, w, chain, 1.0, face ? facing_across(mo, dir) : vec3(1.0), p.atlas), level);
         accumulate(m, s, level, step, correct);
@@ -203,17 +221,18 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
 }
 
 // Returns accumulated radiance (rgb, premultiplied) and opacity (a). With `aniso` the
-// directional chains of `atlas` are sampled; otherwise only the isotropic `volume` (the thesis).
-// `tan_half`: tangent of the cone's half aperture.
-vec4 trace_cone_filtered(sampler3D volume, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw, vec3 normal,
-                         vec3 dir, float tan_half, ConeParams p) {
+// directional chains of `atlas` are sampled above level 0; otherwise the isotropic `chain` (the
+// thesis). `volume` holds level 0. `tan_half`: tangent of the cone's half aperture.
+vec4 trace_cone_filtered(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw,
+                         vec3 normal, vec3 dir, float tan_half, ConeParams p) {
     if (aniso) return march_aniso(volume, moment, atlas, uvw, normal, dir, tan_half, p);
-    return march_iso(volume, moment, uvw, normal, dir, tan_half, p);
+    return march_iso(volume, chain, moment, uvw, normal, dir, tan_half, p);
 }
 
-// The thesis' isotropic cone trace (Listing 4.1).
+// The thesis' isotropic cone trace (Listing 4.1) through one texture with the whole mip chain
+// (`p.chain_base` 1).
 vec4 trace_cone(sampler3D volume, vec3 uvw, vec3 normal, vec3 dir, float tan_half, ConeParams p) {
-    return trace_cone_filtered(volume, volume, volume, false, uvw, normal, dir, tan_half, p);
+    return trace_cone_filtered(volume, volume, volume, volume, false, uvw, normal, dir, tan_half, p);
 }
 
 // An orthonormal tangent frame around n (Frisvad 2012, revised by Duff et al. 2017).

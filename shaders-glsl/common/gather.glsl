@@ -2,7 +2,8 @@
 // render/cones.rs): each cone of `cones` is a direction in the surface's tangent frame with its
 // cosine weight, and the weighted sum of the cones' radiance is the cosine-weighted mean of the
 // incoming radiance, so albedo times it is the outgoing diffuse radiance (albedo/pi * E). Shared
-// by the surface shading and the voxel-space bounce pass. The includer binds `radiance_volume`,
+// by the surface shading and the voxel-space bounce pass. The includer binds `radiance_volume`
+// (level 0, read by common/level0.glsl), the chain above it `radiance_chain`,
 // the radiance moment `radiance_moment` and the directional chains' atlas `radiance_aniso`, and
 // declares the ANISOTROPIC specialization constant.
 #ifndef VCT_GATHER_GLSL
@@ -14,12 +15,13 @@
 ConeParams frame_cone_params() {
     return ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_dims.xyz,
                       frame.voxel_grid.y - 1.0, frame.cone_model.y, uint(frame.cone_model.z), 0.5,
-                      frame.aniso_atlas.xyz);
+                      frame.aniso_atlas.xyz, 0.0);
 }
 
 vec4 trace_frame_cone(vec3 uvw, vec3 n, vec3 dir, float tan_half, ConeParams p) {
     const bool aniso = ANISOTROPIC;
-    return trace_cone_filtered(radiance_volume, radiance_moment, radiance_aniso, aniso, uvw, n, dir, tan_half, p);
+    return trace_cone_filtered(radiance_volume, radiance_chain, radiance_moment, radiance_aniso, aniso, uvw, n, dir,
+                               tan_half, p);
 }
 
 // Returns the cosine-weighted mean incoming radiance (rgb) and occlusion (a) around `n` at `uvw`

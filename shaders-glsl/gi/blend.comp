@@ -24,12 +24,21 @@ layout(constant_id = 0) const bool LISTED = false;
 
 void main() {
     ivec3 v;
-    ivec3 size = imageSize(radiance);
+    ivec3 size = ivec3(frame.voxel_dims.xyz);
     if (!listed_or_dense(LISTED, size, v)) return;
-    vec4 now = imageLoad(injected, stored_at(v));
+    ivec3 at = stored_at(v);
+    vec4 now = imageLoad(injected, at);
     float factor = frame.voxel_grid.w > 0.5 || push.use_history == 0u ? 1.0 : frame.voxel_grid.z;
-    vec3 previous = (vec3(v) + 0.5 + frame.history_shift.xyz) / vec3(size);
-    bool inside = all(greaterThanEqual(previous, vec3(0.0))) && all(lessThanEqual(previous, vec3(1.0)));
-    if (factor < 1.0 && inside) now = mix(textureLod(history, previous, 0.0), now, factor);
-    imageStore(radiance, v, now);
+    if (factor < 1.0) {
+        // A sparse grid is fixed (render::Renderer refuses a following one with temporal
+        // filtering): the previous frame's voxel is this one, in the same slot.
+        if (SPARSE) {
+            now = mix(texelFetch(history, at, 0), now, factor);
+        } else {
+            vec3 previous = (vec3(v) + 0.5 + frame.history_shift.xyz) / vec3(size);
+            bool inside = all(greaterThanEqual(previous, vec3(0.0))) && all(lessThanEqual(previous, vec3(1.0)));
+            if (inside) now = mix(textureLod(history, previous, 0.0), now, factor);
+        }
+    }
+    imageStore(radiance, at, now);
 }

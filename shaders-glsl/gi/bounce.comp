@@ -8,10 +8,10 @@
 // keeps it dark seen from behind. One invocation per occupied voxel (common/occupied.glsl),
 // dispatched indirectly: empty voxels stay as the pass's clear left them.
 #include "frame.glsl"
-#define OCCUPIED_BINDING 8
+#define OCCUPIED_BINDING 9
 #include "occupied.glsl"
 #define BRICKS_SET 1
-#define BRICKS_BINDING 9
+#define BRICKS_BINDING 10
 #include "bricks.glsl"
 
 layout(local_size_x = WORKGROUP_1D) in;
@@ -24,6 +24,8 @@ layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D bounced;
 layout(set = 1, binding = 5) uniform sampler3D radiance_volume;
 layout(set = 1, binding = 6) uniform sampler3D radiance_aniso;
 layout(set = 1, binding = 7) uniform sampler3D radiance_moment;
+layout(set = 1, binding = 8) uniform sampler3D radiance_chain;
+#include "level0.glsl"
 
 #include "gather.glsl"
 

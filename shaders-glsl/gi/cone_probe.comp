@@ -20,12 +20,17 @@ layout(push_constant) uniform Push {
     float max_level;
 } push;
 
+// The probe's volume holds every level in one texture, filtered by the sampler.
+vec4 level0_sample(sampler3D level0, vec3 pos) {
+    return textureLod(level0, pos, 0.0);
+}
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= push.count) return;
     Probe p = probes[i];
     ConeParams params =
         ConeParams(push.steps, push.bias, push.start, push.lod_offset, vec3(push.resolution), push.max_level, push.step,
-                   push.flags, 0.5, vec3(0.0));  // isotropic: no directional chains
+                   push.flags, 0.5, vec3(0.0), 1.0);  // isotropic: no directional chains
     results[i] = trace_cone(volume, p.uvw_aperture.xyz, p.normal.xyz, p.dir.xyz, p.uvw_aperture.w, params);
 }

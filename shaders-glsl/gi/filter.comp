@@ -11,14 +11,21 @@
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
 layout(set = 0, binding = 0, rgba16f) uniform readonly image3D src;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D dst;
+#define BRICKS_SET 0
+#define BRICKS_BINDING 3
+#include "bricks.glsl"
 layout(constant_id = 0) const bool LISTED = false;
+// base: src is level 0, stored as the per-voxel targets (in the brick pool with sparse storage:
+// a parent's eight children are one brick, so the table is read once).
+layout(push_constant) uniform Push { uint base; } push;
 
 void main() {
     ivec3 v;
     if (!listed_or_dense(LISTED, imageSize(dst), v)) return;
     vec4 sum = vec4(0.0);
+    ivec3 first = push.base != 0u ? stored_at(2 * v) : 2 * v;
     for (int i = 0; i < 8; i++) {
-        sum += imageLoad(src, 2 * v + ivec3(i & 1, (i >> 1) & 1, i >> 2));
+        sum += imageLoad(src, first + ivec3(i & 1, (i >> 1) & 1, i >> 2));
     }
     imageStore(dst, v, sum * 0.125);
 }

@@ -24,7 +24,8 @@ layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
 #include "bricks.glsl"
 // One invocation per occupied texel of the level (as filter.comp).
 layout(constant_id = 0) const bool LISTED = false;
-// direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0;
+// direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0
+// (stored as the per-voxel targets, like lit_side);
 // axis: the one the atlas stacks its chains along; src_at, dst_at: where the chain starts along
 // it in src and dst (texels); size: the level's extent.
 layout(push_constant) uniform Push {
@@ -47,8 +48,8 @@ ivec3 in_block(ivec3 v, uint at) {
 // the parent's first child (its even corner) is stored; its 2³ children share one brick, so
 // they lie next to it (bricks.glsl), and the page table is read once a parent.
 vec4 child(ivec3 v, vec3 dir, ivec3 first) {
-    vec4 c = imageLoad(src, in_block(v, push.src_at));
-    if (push.base == 0u) return c;
+    if (push.base == 0u) return imageLoad(src, in_block(v, push.src_at));
+    vec4 c = imageLoad(src, first + (v & 1));
     uint side = imageLoad(lit_side, first + (v & 1)).r;
     if ((side >> 24) == 0u) return c;
     vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;

@@ -27,7 +27,7 @@ const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
 
 // Voxel `v`'s moment: xyz the luminance it reflects times its lit side, w its luminance.
 vec4 voxel_moment(ivec3 v) {
-    float total = dot(imageLoad(radiance, v).rgb, LUMA);
+    float total = dot(imageLoad(radiance, stored_at(v)).rgb, LUMA);
     uint side = imageLoad(lit_side, stored_at(v)).r;
     vec3 m = vec3(0.0);
     if ((side >> 24) != 0u) {

@@ -11,6 +11,8 @@ layout(set = 1, binding = 2, rgba32f) uniform writeonly image2D hdr;
 #define BRICKS_SET 1
 #define BRICKS_BINDING 3
 #include "bricks.glsl"
+layout(set = 1, binding = 4) uniform sampler3D radiance_chain;
+#include "level0.glsl"
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -33,7 +35,7 @@ void main() {
     for (float t = tmin; t < tmax; t += step) {
         vec3 p = o + d * t;
         if (radiance) {
-            vec4 s = textureLod(radiance_volume, p, level);
+            vec4 s = level < 0.5 ? level0_sample(radiance_volume, p) : textureLod(radiance_chain, p, level - 1.0);
             if (s.a > 0.3) { color = s.rgb / s.a; break; }
         } else {
             uint a = imageLoad(voxel_albedo, stored_at(clamp(ivec3(floor(p * frame.voxel_dims.xyz)), ivec3(0), ivec3(frame.voxel_dims.xyz) - 1))).r;

@@ -12,6 +12,10 @@ layout(set = 2, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 2, binding = 4, rgba32f) uniform writeonly image2D hdr;
 layout(set = 2, binding = 5) uniform sampler3D radiance_aniso;
 layout(set = 2, binding = 6) uniform sampler3D radiance_moment;
+layout(set = 2, binding = 7) uniform sampler3D radiance_chain;
+#define BRICKS_SET 2
+#define BRICKS_BINDING 8
+#include "level0.glsl"
 
 #include "shading.glsl"
 

@@ -7,6 +7,10 @@ layout(set = 2, binding = 0) uniform sampler2DShadow shadow_map;
 layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
 layout(set = 2, binding = 2) uniform sampler3D radiance_aniso;
 layout(set = 2, binding = 3) uniform sampler3D radiance_moment;
+layout(set = 2, binding = 4) uniform sampler3D radiance_chain;
+#define BRICKS_SET 2
+#define BRICKS_BINDING 5
+#include "level0.glsl"
 
 #include "shading.glsl"
 #include "surface.glsl"

@@ -34,9 +34,9 @@ impl BouncePass {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
         let sampled = |b| Binding::new(b, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c);
-        let mut bindings: Vec<Binding> = (0..5).map(storage).chain((5..8).map(sampled)).collect();
-        bindings.push(Binding::new(8, vk::DescriptorType::STORAGE_BUFFER, c));
+        let mut bindings: Vec<Binding> = (0..5).map(storage).chain((5..9).map(sampled)).collect();
         bindings.push(Binding::new(9, vk::DescriptorType::STORAGE_BUFFER, c));
+        bindings.push(Binding::new(10, vk::DescriptorType::STORAGE_BUFFER, c));
         let set = DescriptorSet::new(ctx, "bounce", &bindings)?;
         set.write_storage(0, voxels.albedo.view.raw);
         set.write_storage(1, voxels.normal.view.raw);
@@ -44,8 +44,8 @@ impl BouncePass {
         set.write_storage(3, radiance.injected.view.raw);
         set.write_storage(4, bounced.view.raw);
         radiance.write_to(&set, 5);
-        set.write_buffer(8, vk::DescriptorType::STORAGE_BUFFER, &occupied.list);
-        set.write_buffer(9, vk::DescriptorType::STORAGE_BUFFER, &voxels.bricks.table);
+        set.write_buffer(9, vk::DescriptorType::STORAGE_BUFFER, &occupied.list);
+        set.write_buffer(10, vk::DescriptorType::STORAGE_BUFFER, &voxels.bricks.table);
         let pipeline = Pipeline::compute(
             ctx,
             "bounce",

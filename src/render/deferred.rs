@@ -37,6 +37,7 @@ impl DeferredShadePass {
         scene: &SceneGpu,
         shadow: &ShadowPass,
         radiance: &RadianceVolume,
+        bricks: &crate::voxel::bricks::Bricks,
         targets: &Targets,
         anisotropic: bool,
     ) -> Result<Self> {
@@ -75,6 +76,8 @@ impl DeferredShadePass {
                 Binding::new(4, storage, c),
                 Binding::new(5, sampled, c),
                 Binding::new(6, sampled, c),
+                Binding::new(7, sampled, c),
+                Binding::new(8, vk::DescriptorType::STORAGE_BUFFER, c),
             ],
         )?;
         let shadow_sampler = Sampler::shadow(ctx, "deferred shadow sampler")?;
@@ -82,13 +85,15 @@ impl DeferredShadePass {
         set.write_images(1, sampled, &[radiance.sampled_info()]);
         set.write_images(5, sampled, &[radiance.aniso_info()]);
         set.write_images(6, sampled, &[radiance.moment_info()]);
+        set.write_images(7, sampled, &[radiance.chain_info()]);
+        set.write_buffer(8, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
         set.write_storage(2, albedo.view.raw);
         set.write_storage(3, normal.view.raw);
         set.write_storage(4, targets.hdr.view.raw);
         let shade_pipeline = Pipeline::compute(
             ctx,
             "deferred shade",
-            Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&[anisotropic as u32]),
+            Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&bricks.spec(anisotropic as u32)),
             &[scene.set.layout, scene.material_sets.layout, set.layout],
             0,
         )?;

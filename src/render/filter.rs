@@ -1,13 +1,15 @@
-//! Radiance filtering (Freed 2018 §4.4): the full mip chain of the radiance volume, one
-//! compute dispatch per level, each voxel the average of its 8 children, with a barrier
+//! Radiance filtering (Freed 2018 §4.4): the isotropic chain above level 0 (level 1 from level
+//! 0, which is stored as the per-voxel textures, in the brick pool with sparse storage), one
+//! compute dispatch per level, each texel the average of its 8 children, with a barrier
 //! between levels; the radiance moment (level 1 from the radiance and each voxel's lit side,
 //! then the same average); optionally also six directional (anisotropic) chains (Crassin et
-//! al. 2011).
+//! al. 2011). Only the chains the model reads are built (`radiance::Chains`).
 //!
 //! With `listed` every level's dispatch runs over that level's occupied texels
-//! ([`ParentLists`], built each time from the occupied voxels), not over every texel: the
-//! levels are cleared first, and an empty texel's filtered value is zero, so the result is the
-//! dense filter's exactly, at a cost that follows the scene's occupied voxels.
+//! ([`ParentLists`], built from the occupied voxels), not over every texel: an empty texel's
+//! filtered value is zero, so the result is the dense filter's exactly, at a cost that follows
+//! the scene's occupied voxels. The levels are cleared first, and the lists rebuilt, unless
+//! the grid is fixed: then the occupied set is the same every frame.
 
 use std::sync::Arc;
 
@@ -67,33 +69,36 @@ impl FilterPass {
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
         let list = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, c);
         let (st, sb) = (vk::DescriptorType::STORAGE_IMAGE, vk::DescriptorType::STORAGE_BUFFER);
-        let dims = volume.radiance.desc.size();
+        let dims: [u32; 3] = voxels.grid.dims.into();
         let bricks = voxels.bricks.sparse().then(|| voxels.bricks.capacity.saturating_sub(1) as u64);
         let parents = listed.then(|| ParentLists::new(ctx, dims, volume.levels, occupied, bricks)).transpose()?;
         // Level l's list (the occupied voxels' own list stands in when the dispatch is dense:
         // the binding must hold a buffer).
         let level_list = |level: u32| parents.as_ref().map_or(&occupied.list, |p| &p.levels[level as usize - 1].list);
-        let spec = [listed as u32];
         let per_chain = volume.levels.saturating_sub(1);
-        let sets = DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1), list(2)], 2 * per_chain)?;
-        // The moment's chain starts at level 1 (its mip 0, which gi/moment.comp writes).
-        for (k, chain, first) in [(0, &volume.radiance, 0), (1, &volume.moment, 1)] {
-            if chain.desc.mip_levels + first < volume.levels {
-                continue; // the isotropic chain, unallocated above level 0: never built
+        let sets =
+            DescriptorSet::new_many(ctx, "mip filter", &[storage(0), storage(1), list(2), list(3)], 2 * per_chain)?;
+        // Both chains start at level 1 (their mip 0): the isotropic one's is filtered from level
+        // 0, stored as the per-voxel targets; the moment's is written by gi/moment.comp.
+        for (k, chain, first) in [(0, &volume.chain, 0), (1, &volume.moment, 1)] {
+            if chain.desc.mip_levels + 1 < volume.levels {
+                continue; // the isotropic chain, unallocated: never built
             }
             for level in first + 1..volume.levels {
                 let set = k * per_chain as usize + level as usize - 1;
-                sets.write_images_at(set, 0, st, &[storage_info(chain.mip_view(level - 1 - first))]);
-                sets.write_images_at(set, 1, st, &[storage_info(chain.mip_view(level - first))]);
+                let src = if level == 1 { volume.level0().view.raw } else { chain.mip_view(level - 2) };
+                sets.write_images_at(set, 0, st, &[storage_info(src)]);
+                sets.write_images_at(set, 1, st, &[storage_info(chain.mip_view(level - 1))]);
                 sets.write_buffer_at(set, 2, sb, level_list(level));
+                sets.write_buffer_at(set, 3, sb, &voxels.bricks.table);
             }
         }
         let pipeline = Pipeline::compute(
             ctx,
             "mip filter",
-            Stage::new(c, shaders::GI_FILTER_COMP).spec(&spec),
+            Stage::new(c, shaders::GI_FILTER_COMP).spec(&voxels.bricks.spec(listed as u32)),
             &[sets.layout],
-            0,
+            4,
         )?;
 
         let moment_set = DescriptorSet::new(
@@ -101,7 +106,7 @@ impl FilterPass {
             "radiance moment",
             &[storage(0), storage(1), storage(2), storage(3), list(4), list(5)],
         )?;
-        moment_set.write_images(0, st, &[storage_info(volume.radiance.mip_view(0))]);
+        moment_set.write_images(0, st, &[storage_info(volume.level0().view.raw)]);
         moment_set.write_storage(1, volume.lit_side.view.raw);
         moment_set.write_storage(2, voxels.emission.view.raw);
         moment_set.write_images(3, st, &[storage_info(volume.moment.mip_view(0))]);
@@ -124,7 +129,7 @@ impl FilterPass {
         )?;
         for level in (1..volume.levels).filter(|_| volume.chains.directional) {
             let set = level as usize - 1;
-            let src = if level == 1 { volume.radiance.mip_view(0) } else { volume.aniso.mip_view(level - 2) };
+            let src = if level == 1 { volume.level0().view.raw } else { volume.aniso.mip_view(level - 2) };
             aniso_sets.write_images_at(set, 0, st, &[storage_info(src)]);
             aniso_sets.write_images_at(set, 1, st, &[storage_info(volume.aniso.mip_view(level - 1))]);
             aniso_sets.write_images_at(set, 2, st, &[storage_info(volume.lit_side.view.raw)]);
@@ -194,7 +199,7 @@ impl FilterPass {
             let ctx = &self.ctx;
             if self.clear {
                 if volume.chains.isotropic {
-                    gpu::clear_mips(ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
+                    gpu::clear_mips(ctx, cmd, &volume.chain, 0..volume.chain.desc.mip_levels, scope::ANY);
                 }
                 gpu::clear_mips(ctx, cmd, &volume.moment, 0..volume.moment.desc.mip_levels, scope::ANY);
                 gpu::clear_mips(ctx, cmd, &volume.aniso, 0..volume.aniso.desc.mip_levels, scope::ANY);
@@ -209,16 +214,18 @@ impl FilterPass {
         }
         if !isotropic && self.parents.is_none() && volume.chains.isotropic {
             // Unbuilt levels read as empty, as the listed path's clear leaves them.
-            gpu::clear_mips(&self.ctx, cmd, &volume.radiance, 1..self.levels, scope::ANY);
+            gpu::clear_mips(&self.ctx, cmd, &volume.chain, 0..volume.chain.desc.mip_levels, scope::ANY);
             gpu::memory_barrier(&self.ctx, cmd, scope::CLEAR_WRITE, r);
         }
         for level in 1..self.levels {
             if isotropic {
                 self.pipeline.bind(cmd, &[self.sets.sets[level as usize - 1]]);
+                self.pipeline.push(cmd, &[(level == 1) as u32]);
                 self.dispatch_level(cmd, level, occupied);
             }
             if moment && level > 1 {
                 self.pipeline.bind(cmd, &[self.sets.sets[per_chain + level as usize - 1]]);
+                self.pipeline.push(cmd, &[0u32]);
                 self.dispatch_level(cmd, level, occupied);
             }
             gpu::memory_barrier(&self.ctx, cmd, w, r);

@@ -246,6 +246,13 @@ impl Renderer {
         // its geometry left it (a trail behind a moving volume) stays dark.
         let listed = options.work == Work::Occupied;
         let sparse = options.storage.resolve(options.follow.is_some()) == Storage::Sparse;
+        if sparse && options.follow.is_some() && scene.settings.gi.temporal < 1.0 {
+            // The history is stored as level 0: in a moving pool its slots change every frame.
+            return Err(crate::Error::param(
+                "temporal",
+                "temporal filtering of a volume following the camera needs --storage dense (auto picks it)",
+            ));
+        }
         // The whole set before any of it is allocated (all but the pool, whose size the census
         // tells), and again with the pool.
         let bounces = scene.settings.gi.bounces > 1;
@@ -283,9 +290,11 @@ impl Renderer {
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, occupied, aniso))
             .transpose()?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
-        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, aniso)?;
+        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso)?;
         let deferred = match options.tracing {
-            Tracing::Deferred => Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &targets, aniso)?),
+            Tracing::Deferred => {
+                Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, &targets, aniso)?)
+            }
             Tracing::Forward => None,
         };
         let volume_view = VolumeViewPass::new(ctx, &scene_gpu, &voxels, &radiance, &targets)?;
@@ -366,17 +375,15 @@ impl Renderer {
             let moment = gi.facing;
             t.span(cmd, "inject", || {
                 self.inject.record(cmd, scene, &self.radiance, &self.voxels.occupied, light);
+                let temporal = temporal && self.radiance.has_history();
                 if temporal {
                     self.temporal.record_history(cmd, &self.radiance);
                 }
-                self.temporal.record(
-                    cmd,
-                    scene,
-                    &self.radiance,
-                    &self.voxels.occupied,
-                    Source::Injected,
-                    temporal && bounces == 1,
-                );
+                // Without a blend or bounces, level 0 is the injected light itself.
+                if self.radiance.radiance.is_some() {
+                    let history = temporal && bounces == 1;
+                    self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Injected, history);
+                }
             });
             // The isotropic chain above level 0 only where something reads it.
             let iso = self.radiance.chains.isotropic;
@@ -463,6 +470,7 @@ impl Renderer {
                 &self.scene_gpu,
                 &self.shadow,
                 &self.radiance,
+                &self.voxels.bricks,
                 &self.targets,
                 self.scene.settings.gi.filter == Filter::Aniso,
             )?),

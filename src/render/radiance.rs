@@ -1,6 +1,9 @@
-//! The radiance volume (Freed 2018 §4.3-4.4): an RGBA16F 3D texture with a full mip chain
-//! (premultiplied radiance and opacity), plus the level-0 target that injection writes before
-//! the temporal blend. Both stay in GENERAL layout: written as storage, sampled by the cones.
+//! The radiance volume (Freed 2018 §4.3-4.4): RGBA16F premultiplied radiance and opacity. Its
+//! level 0 (and the injected light that the temporal blend reads) is stored as the per-voxel
+//! textures are, in the brick pool with sparse storage (voxel::bricks; the cones filter it
+//! through the page table, common/level0.glsl); the levels above it are dense mip chains, the
+//! isotropic one and the six directional ones. All stay in GENERAL layout: written as storage,
+//! sampled by the cones.
 
 use std::sync::Arc;
 
@@ -15,7 +18,12 @@ pub const RADIANCE_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 
 pub struct RadianceVolume {
     pub injected: Image,
-    pub radiance: Image,
+    /// Level 0 after the temporal blend and the bounces (none where it is the injected light:
+    /// see [`RadianceVolume::level0`]).
+    pub radiance: Option<Image>,
+    /// The isotropic chain above level 0 (its mip m is level m + 1; one texel unless
+    /// `chains.isotropic`).
+    pub chain: Image,
     /// Directional chains for anisotropic filtering (+X, -X, +Y, -Y, +Z, -Z), stacked in one
     /// atlas with empty separators between neighbours (`atlas`): level l of the volume is their
     /// mip l - 1.
@@ -68,7 +76,11 @@ impl Chains {
 #[derive(Clone, Copy, Debug)]
 pub struct RadianceDescs {
     pub injected: ImageDesc,
-    pub radiance: ImageDesc,
+    /// Level 0 after the temporal blend and the bounces, stored as the per-voxel targets; none
+    /// where it would equal the injected light (one bounce, no temporal filter).
+    pub radiance: Option<ImageDesc>,
+    /// The isotropic chain above level 0: its mip m is level m + 1.
+    pub chain: ImageDesc,
     pub aniso: ImageDesc,
     pub lit_side: ImageDesc,
     pub history: ImageDesc,
@@ -77,31 +89,38 @@ pub struct RadianceDescs {
 }
 
 impl RadianceDescs {
-    /// Over `grid`, the per-voxel targets (injected light, lit side, bounce target) at
-    /// `stored`: the grid's extent, or the brick pool's (voxel::bricks); the history at level
-    /// 0's extent only with `temporal` filtering, and of the sampled chains above level 0 only
-    /// `chains` (else one texel, or level 0 alone: bound but never read).
+    /// Over `grid`, the per-voxel targets (injected light, level 0, lit side, bounce target,
+    /// history) at `stored`: the grid's extent, or the brick pool's (voxel::bricks); the
+    /// history only with `temporal` filtering, and of the sampled chains above level 0 only
+    /// `chains` (else one texel: bound but never read).
     pub fn new(grid: &VoxelGrid, bounces: bool, stored: vk::Extent3D, temporal: bool, chains: Chains) -> Self {
         let levels = grid.mip_levels();
-        let extent = extent_of(grid.dims);
         let storage =
             vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
         let sampled = storage | vk::ImageUsageFlags::SAMPLED;
-        let d3 = |usage| ImageDesc::d3_extent(RADIANCE_FORMAT, extent, usage);
         let atlas = AtlasLayout::new(grid).extent();
         let chain = (grid.dims / 2).max(glam::UVec3::ONE);
         let texel = vk::Extent3D { width: 1, height: 1, depth: 1 };
         let pooled = |format, usage| ImageDesc::d3_extent(format, stored, usage);
         RadianceDescs {
-            injected: pooled(RADIANCE_FORMAT, storage),
-            radiance: d3(sampled).mips(if chains.isotropic { levels } else { 1 }),
+            injected: pooled(RADIANCE_FORMAT, sampled),
+            radiance: (temporal || bounces).then(|| pooled(RADIANCE_FORMAT, sampled)),
+            chain: if chains.isotropic {
+                ImageDesc::d3_extent(RADIANCE_FORMAT, extent_of(chain), sampled).mips((levels - 1).max(1))
+            } else {
+                ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled)
+            },
             aniso: if chains.directional {
                 ImageDesc::d3_extent(RADIANCE_FORMAT, atlas, sampled).mips((levels - 1).max(1))
             } else {
                 ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled)
             },
             lit_side: pooled(crate::voxel::volume::VOXEL_FORMAT, storage),
-            history: if temporal { d3(sampled) } else { ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled) },
+            history: if temporal {
+                pooled(RADIANCE_FORMAT, sampled)
+            } else {
+                ImageDesc::d3_extent(RADIANCE_FORMAT, texel, sampled)
+            },
             moment: ImageDesc::d3_extent(RADIANCE_FORMAT, extent_of(chain), sampled).mips((levels - 1).max(1)),
             bounced: bounces.then(|| pooled(RADIANCE_FORMAT, storage)),
         }
@@ -109,14 +128,15 @@ impl RadianceDescs {
 
     /// Every image with its name, in the report's order.
     pub fn named(&self) -> Vec<(&'static str, ImageDesc)> {
-        let mut v = vec![
-            ("injected radiance", self.injected),
-            ("radiance volume", self.radiance),
+        let mut v = vec![("injected radiance", self.injected)];
+        v.extend(self.radiance.map(|r| ("radiance level 0", r)));
+        v.extend([
+            ("radiance chain", self.chain),
             ("radiance directional chains", self.aniso),
             ("lit side", self.lit_side),
             ("radiance history", self.history),
             ("radiance moment", self.moment),
-        ];
+        ]);
         v.extend(self.bounced.map(|b| ("bounced radiance", b)));
         v
     }
@@ -151,17 +171,14 @@ impl RadianceVolume {
             .collect::<Result<Vec<_>>>()?
             .into_iter();
         let mut next = || images.next().expect("one image per description");
-        let (injected, radiance, aniso, lit_side, history, moment) = (next(), next(), next(), next(), next(), next());
+        let injected = next();
+        let radiance = d.radiance.map(|_| next());
+        let (chain, aniso, lit_side, history, moment) = (next(), next(), next(), next(), next());
         let bounced = bounces.then(next);
-        // Start all in GENERAL and zero, so the first temporal blend reads defined history.
-        ctx.submit_and_wait("clear radiance", |cmd| {
-            for img in [&injected, &radiance, &lit_side, &history, &moment, &aniso].into_iter().chain(&bounced) {
-                gpu::clear_to_general(ctx, cmd, img, scope::NONE);
-            }
-        })?;
-        Ok(RadianceVolume {
+        let volume = RadianceVolume {
             injected,
             radiance,
+            chain,
             aniso,
             atlas: AtlasLayout::new(grid),
             chains,
@@ -171,28 +188,48 @@ impl RadianceVolume {
             moment,
             sampler: Sampler::linear_border(ctx, "radiance sampler")?,
             levels,
-        })
+        };
+        // Start all in GENERAL and zero, so the first temporal blend reads defined history.
+        ctx.submit_and_wait("clear radiance", |cmd| {
+            for img in volume.images() {
+                gpu::clear_to_general(ctx, cmd, img, scope::NONE);
+            }
+        })?;
+        Ok(volume)
     }
 
     /// The volumes, in [`RadianceDescs::named`]'s order.
     pub fn images(&self) -> Vec<&Image> {
-        let mut v = vec![&self.injected, &self.radiance, &self.aniso, &self.lit_side, &self.history, &self.moment];
+        let mut v = vec![&self.injected];
+        v.extend(&self.radiance);
+        v.extend([&self.chain, &self.aniso, &self.lit_side, &self.history, &self.moment]);
         v.extend(&self.bounced);
         v
     }
 
-    /// Whether the history holds level 0 (temporal filtering can run).
-    pub fn has_history(&self) -> bool {
-        self.history.desc.extent == self.radiance.desc.extent
+    /// Level 0 as the cones read it: after the blend and the bounces, or the injected light
+    /// itself where nothing is blended in.
+    pub fn level0(&self) -> &Image {
+        self.radiance.as_ref().unwrap_or(&self.injected)
     }
 
-    /// Descriptor info for sampling the whole mip chain (GENERAL layout).
+    /// Whether the history holds level 0 (temporal filtering can run).
+    pub fn has_history(&self) -> bool {
+        self.radiance.is_some() && self.history.desc.extent == self.injected.desc.extent
+    }
+
+    /// Descriptor info for sampling level 0 (GENERAL layout; stored as the per-voxel targets).
     pub fn sampled_info(&self) -> vk::DescriptorImageInfo {
         vk::DescriptorImageInfo {
             sampler: self.sampler.raw,
-            image_view: self.radiance.view.raw,
+            image_view: self.level0().view.raw,
             image_layout: vk::ImageLayout::GENERAL,
         }
+    }
+
+    /// Descriptor info for sampling the isotropic chain above level 0.
+    pub fn chain_info(&self) -> vk::DescriptorImageInfo {
+        vk::DescriptorImageInfo { image_view: self.chain.view.raw, ..self.sampled_info() }
     }
 
     /// Descriptor info for sampling the directional chains' atlas.
@@ -205,13 +242,15 @@ impl RadianceVolume {
         vk::DescriptorImageInfo { image_view: self.moment.view.raw, ..self.sampled_info() }
     }
 
-    /// Writes the isotropic volume at `binding`, the directional chains' atlas after it and then
-    /// the moment.
+    /// Writes level 0 at `binding`, the directional chains' atlas after it, then the moment and
+    /// the isotropic chain above level 0 (common/level0.glsl reads level 0 through the page
+    /// table, which the includer binds).
     pub fn write_to(&self, set: &crate::gpu::DescriptorSet, binding: u32) {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         set.write_images(binding, sampled, &[self.sampled_info()]);
         set.write_images(binding + 1, sampled, &[self.aniso_info()]);
         set.write_images(binding + 2, sampled, &[self.moment_info()]);
+        set.write_images(binding + 3, sampled, &[self.chain_info()]);
     }
 }
 

@@ -32,6 +32,7 @@ impl ShadePass {
         scene: &SceneGpu,
         shadow: &ShadowPass,
         radiance: &RadianceVolume,
+        bricks: &crate::voxel::bricks::Bricks,
         anisotropic: bool,
     ) -> Result<Self> {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
@@ -39,12 +40,16 @@ impl ShadePass {
         let set = DescriptorSet::new(
             ctx,
             "shade inputs",
-            &(0..4).map(|b| Binding::new(b, sampled, frag)).collect::<Vec<_>>(),
+            &(0..5)
+                .map(|b| Binding::new(b, sampled, frag))
+                .chain([Binding::new(5, vk::DescriptorType::STORAGE_BUFFER, frag)])
+                .collect::<Vec<_>>(),
         )?;
         let shadow_sampler = Sampler::shadow(ctx, "shadow sampler")?;
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
         radiance.write_to(&set, 1);
-        let aniso = [anisotropic as u32];
+        set.write_buffer(5, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
+        let aniso = bricks.spec(anisotropic as u32);
         let mut desc = GraphicsDesc::new(
             "shade",
             vec![

@@ -6,6 +6,11 @@
 //! Over the occupied voxels (`listed`), the blend runs on the occupied-voxel list after clearing
 //! level 0: only occupied voxels keep light, with or without a history (a voxel its geometry
 //! left no longer trails light behind a moving volume).
+//!
+//! Level 0 and the history are stored as the per-voxel targets (voxel::bricks). With sparse
+//! storage the grid is fixed, so the previous frame's voxel is this one's, in the same slot. With
+//! one bounce and no temporal filter nothing is blended in: level 0 is the injected light itself
+//! and this pass does not run (`RadianceVolume::level0`).
 
 use std::sync::Arc;
 
@@ -72,7 +77,7 @@ impl TemporalBlend {
         };
         for (i, src) in sources.iter().enumerate() {
             sets.write_images_at(i, 0, vk::DescriptorType::STORAGE_IMAGE, &[info(src.view.raw)]);
-            sets.write_images_at(i, 1, vk::DescriptorType::STORAGE_IMAGE, &[info(radiance.radiance.mip_view(0))]);
+            sets.write_images_at(i, 1, vk::DescriptorType::STORAGE_IMAGE, &[info(radiance.level0().view.raw)]);
             sets.write_images_at(
                 i,
                 2,
@@ -93,7 +98,7 @@ impl TemporalBlend {
             ctx: ctx.clone(),
             pipeline,
             sets,
-            dims: radiance.radiance.desc.size(),
+            dims: voxels.grid.dims.into(),
             listed,
             clear: listed && !fixed,
         })
@@ -101,7 +106,7 @@ impl TemporalBlend {
 
     /// Keeps the previous frame's level 0 for the blend to reproject (before the first blend).
     pub fn record_history(&self, cmd: vk::CommandBuffer, radiance: &RadianceVolume) {
-        gpu::copy_level(&self.ctx, cmd, &radiance.radiance, 0, &radiance.history);
+        gpu::copy_level(&self.ctx, cmd, radiance.level0(), 0, &radiance.history);
     }
 
     /// Writes level 0 from `source`, mixed with the history when `history` (of `radiance`, over
@@ -120,7 +125,7 @@ impl TemporalBlend {
             Source::Bounced => self.sets.sets[1],
         };
         if self.clear {
-            gpu::clear_mips(&self.ctx, cmd, &radiance.radiance, 0..1, scope::ANY);
+            gpu::clear_mips(&self.ctx, cmd, radiance.level0(), 0..1, scope::ANY);
             gpu::memory_barrier(&self.ctx, cmd, scope::CLEAR_WRITE, scope::COMPUTE_RW);
         }
         self.pipeline.bind(cmd, &[scene.set.raw, set]);

@@ -36,12 +36,14 @@ impl VolumeViewPass {
                 Binding::new(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
                 Binding::new(2, vk::DescriptorType::STORAGE_IMAGE, c),
                 Binding::new(3, vk::DescriptorType::STORAGE_BUFFER, c),
+                Binding::new(4, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
             ],
         )?;
         set.write_storage(0, voxels.albedo.view.raw);
         set.write_images(1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, &[radiance.sampled_info()]);
         set.write_storage(2, targets.hdr.view.raw);
         set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &voxels.bricks.table);
+        set.write_images(4, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, &[radiance.chain_info()]);
         let pipeline = Pipeline::compute(
             ctx,
             "volume view",
