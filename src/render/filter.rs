@@ -137,7 +137,7 @@ impl FilterPass {
             aniso_sets.write_buffer_at(set, 4, sb, &voxels.bricks.table);
         }
         // Where each chain's block starts at each chain mip (src of level l is mip l - 2).
-        let offsets = (0..6).map(|d| (0..per_chain).map(|m| volume.atlas.offset(d, m as u32)).collect()).collect();
+        let offsets = (0..6).map(|d| (0..per_chain).map(|m| volume.atlas.offset(d, m)).collect()).collect();
         let aniso_pipeline = Pipeline::compute(
             ctx,
             "anisotropic mip filter",
@@ -175,8 +175,9 @@ impl FilterPass {
         list.dispatch_or_dense(cmd, self.parents.is_some(), self.dims.map(|n| (n >> level).max(1)));
     }
 
-    /// Builds the isotropic chain (when `isotropic`: the cones of the isotropic model and the
-    /// radiance view read it; the directional model's cones read only its level 0), the moment
+    /// Builds the isotropic chain above level 0 (where `volume` has one: the cones of the
+    /// isotropic model and the radiance view read it; the directional model's cones read only
+    /// level 0), the moment
     /// (when `moment`) and, when `anisotropic`, the six directional chains; `occupied` is this
     /// frame's list of occupied voxels (its dispatch arguments written); `first_frame`: the
     /// renderer's first (the parent lists of a fixed occupied set are built then only).
@@ -187,9 +188,9 @@ impl FilterPass {
         occupied: &OccupiedVoxels,
         anisotropic: bool,
         moment: bool,
-        isotropic: bool,
         first_frame: bool,
     ) {
+        let isotropic = volume.chains.isotropic;
         let (w, r) = (scope::COMPUTE_WRITE, scope::COMPUTE_RW);
         let per_chain = self.levels as usize - 1;
         // A fixed occupied set has the same parents every frame: they are listed once.

@@ -385,10 +385,8 @@ impl Renderer {
                     self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Injected, history);
                 }
             });
-            // The isotropic chain above level 0 only where something reads it.
-            let iso = self.radiance.chains.isotropic;
             let first = self.frame_index.get() == 0;
-            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, iso, first);
+            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, first);
             t.span(cmd, "filter", filter);
             if let Some(b) = &self.bounce {
                 t.span(cmd, "bounces", || {
