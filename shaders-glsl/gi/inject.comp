@@ -49,7 +49,7 @@ void main() {
     // behind the point: a wall thinner than a voxel must not light its far side.
     vec3 l_dir = uint(frame.light_pos.w) == LIGHT_DIRECTIONAL ? frame.light_dir.xyz : normalize(p - frame.light_pos.xyz);
     float step = 0.25 * frame.voxel_origin.w;
-    ivec3 v = ivec3(-1);
+    ivec3 v = ivec3(-1), t = ivec3(0);  // the voxel, and where it is stored
     uint a = 0u;
     // In voxel units, from a quarter voxel before the point, one voxel at a time: a step no
     // longer than a voxel cannot jump over a wall's voxel layer. Mostly two loads: the surface's
@@ -58,9 +58,11 @@ void main() {
     for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= l_dir) {
         ivec3 u = ivec3(floor(g));
         if (!voxel_in_grid(u)) break;
-        uint b = imageLoad(voxel_albedo, stored_at(u)).r;
+        ivec3 at = stored_at(u);
+        uint b = imageLoad(voxel_albedo, at).r;
         if ((b >> 24) != 0u) {
             v = u;
+            t = at;
             a = b;
         } else if ((a >> 24) != 0u) {
             break;
@@ -69,10 +71,10 @@ void main() {
     if ((a >> 24) == 0u) {
         v = ivec3(floor(world_to_voxel(p + l_dir * step)));
         if (!voxel_in_grid(v)) return;
-        a = imageLoad(voxel_albedo, stored_at(v)).r;
+        t = stored_at(v);
+        a = imageLoad(voxel_albedo, t).r;
         if ((a >> 24) == 0u) return;
     }
-    ivec3 t = stored_at(v);
     vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
     vec3 normal = unpack(imageLoad(voxel_normal, t).r).xyz * 2.0 - 1.0;
     vec3 l;
