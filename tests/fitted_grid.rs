@@ -106,8 +106,8 @@ fn fitted_grid_renders_the_bounding_cubes_image() {
 fn memory_report_adds_up_and_matches_what_is_allocated() {
     let ctx = common::context();
     let scene = common::hall();
-    let sparse =
-        Renderer::new(&ctx, scene.clone(), RenderOptions { resolution: Some(64), ..Default::default() }).unwrap();
+    let options = RenderOptions { resolution: Some(64), storage: Storage::Sparse, ..Default::default() };
+    let sparse = Renderer::new(&ctx, scene.clone(), options).unwrap();
     sparse.render().unwrap();
     let s = sparse.memory();
     check_rows(&sparse, &s);
@@ -146,7 +146,14 @@ fn memory_report_adds_up_and_matches_what_is_allocated() {
     // A cubic grid is its own cube.
     let c = vct::render::memory::MemoryReport::for_grid(
         &VoxelGrid::fit_dims(&scene.mesh.bounds, UVec3::splat(32)).unwrap(),
-        &vct::render::memory::Layout { bounces: true, listed: true, pool: None, temporal: true, chains: Chains::ALL },
+        &vct::render::memory::Layout {
+            bounces: true,
+            listed: true,
+            pool: None,
+            resident: None,
+            temporal: true,
+            chains: Chains::ALL,
+        },
     );
     assert_eq!(c.bytes, c.cube_bytes);
     common::assert_clean(&ctx);
@@ -158,7 +165,7 @@ fn check_rows(r: &Renderer, m: &vct::render::memory::MemoryReport) {
     assert_eq!(m.bytes, m.rows.iter().map(|r| r.bytes).sum::<u64>());
     assert_eq!(m.cube_bytes, m.rows.iter().map(|r| r.cube_bytes).sum::<u64>());
     let images: Vec<_> = r.voxels.images().into_iter().chain(r.radiance.images()).collect();
-    let table = r.voxels.bricks.sparse() as usize;
+    let table = r.voxels.bricks.stored_bricks().is_some() as usize;
     assert_eq!(images.len() + table + 2, m.rows.len(), "a row per image, the page table, the occupied lists");
     for (row, img) in m.rows.iter().zip(&images) {
         assert_eq!((row.name, row.extent, row.mips), (img.name.as_str(), img.desc.size(), img.desc.mip_levels));

@@ -12,6 +12,11 @@
 #include "config.h"
 
 layout(constant_id = 1) const bool SPARSE = false;
+// Resident storage (Vulkan sparse residency): stored as dense, but memory only in the blocks of
+// the bricks the census asked for, which the table marks with 1. The voxelizers refuse a write
+// outside them and count its brick in `next` (an error for the frame) instead of losing it to
+// an unbound block, where writes vanish.
+layout(constant_id = 2) const bool RESIDENT = false;
 
 layout(set = BRICKS_SET, binding = BRICKS_BINDING, std430)
 #ifdef BRICKS_CLAIM
@@ -64,6 +69,13 @@ ivec3 stored_at(ivec3 v) {
 // forever; BRICK_CLAIM_ITERATIONS bounds it in any case.
 bool claim_brick(ivec3 v, out ivec3 texel) {
     texel = v;
+    if (RESIDENT) {
+        uint i = brick_index(v);
+        uint s = bricks.page[i];
+        if (s == 1u) return true;
+        if (s == 0u && atomicCompSwap(bricks.page[i], 0u, BRICK_REFUSED) == 0u) atomicAdd(bricks.next, 1u);
+        return false;
+    }
     if (!SPARSE) return true;
     uint i = brick_index(v);
     for (int k = 0; k < BRICK_CLAIM_ITERATIONS; k++) {

@@ -282,7 +282,7 @@ macro_rules! both_backends {
 pub fn draw_all(dir: &Path, all: &Results) -> Result<Vec<PathBuf>> {
     ensure_font()?;
     // The voxelizer charts over the default storage; the storage charts over every mode.
-    let stored = crate::voxel::bricks::Storage::default().resolve(false).label();
+    let stored = all.default_storage.as_str();
     let r = &Results { rows: all.rows.iter().filter(|x| x.storage == stored).cloned().collect(), ..all.clone() };
     let charts: [(&str, Chart); 4] = [
         ("voxelize_time", both_backends!(voxelize_time, 900, 560)),

@@ -98,6 +98,9 @@ pub struct Results {
     pub references: Vec<ReferenceInfo>,
     pub rows: Vec<Row>,
     pub triangle_sweep: Vec<TriangleRow>,
+    /// The default storage on the device (`auto` resolved; runs before residency: sparse).
+    #[serde(default = "sparse_label")]
+    pub default_storage: String,
 }
 
 #[derive(Clone, Serialize, Deserialize)]
@@ -109,6 +112,10 @@ pub struct ReferenceInfo {
 
 fn dense_label() -> String {
     Storage::Dense.label().into()
+}
+
+fn sparse_label() -> String {
+    Storage::Sparse.label().into()
 }
 
 /// The voxelizers a device can run: tessellation, rasterized with MSAA, without, and
@@ -296,6 +303,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         reference_bounces: 1,
         references,
         rows,
+        default_storage: Storage::default().resolve(ctx, false).label().into(),
         triangle_sweep,
     })
 }
@@ -395,7 +403,7 @@ pub fn summary(r: &Results) -> String {
         ));
     }
     s.push_str("\nTess/raster (MSAA) voxelization time ratio:\n\n| scene | N | tess ms | raster ms | ratio |\n|---|---|---|---|---|\n");
-    let stored = Storage::default().resolve(false).label();
+    let stored = r.default_storage.as_str();
     for t in r.rows.iter().filter(|x| x.voxelizer == "tess" && x.storage == stored) {
         if let Some(m) = r.rows.iter().find(|x| {
             x.voxelizer == "raster-msaa" && x.storage == stored && x.scene == t.scene && x.resolution == t.resolution

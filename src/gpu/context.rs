@@ -119,12 +119,17 @@ unsafe fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice) -> Devi
     let core = f2.features;
     let exts = instance.enumerate_device_extension_properties(pd).unwrap_or_default();
     let has_ext = |name: &CStr| exts.iter().any(|e| e.extension_name_as_c_str() == Ok(name));
+    let families = instance.get_physical_device_queue_family_properties(pd);
+    let sparse_queue =
+        queue_family_of(&families).is_some_and(|f| families[f].queue_flags.contains(vk::QueueFlags::SPARSE_BINDING));
     let features = FeatureSet {
         core,
         dynamic_rendering: f13.dynamic_rendering == vk::TRUE,
         synchronization2: f13.synchronization2 == vk::TRUE,
         no_attachment_samples: props.limits.framebuffer_no_attachments_sample_counts,
         conservative_rasterization: has_ext(ash::ext::conservative_rasterization::NAME),
+        sparse: props.sparse_properties,
+        sparse_queue,
     };
     let cstr = |s: Result<&CStr, _>| s.map(|c: &CStr| c.to_string_lossy().into_owned()).unwrap_or_default();
     DeviceInfo {
@@ -135,6 +140,13 @@ unsafe fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice) -> Devi
         features,
         limits: props.limits,
     }
+}
+
+/// The queue family vct submits everything to: graphics and compute, with timestamps.
+fn queue_family_of(families: &[vk::QueueFamilyProperties]) -> Option<usize> {
+    families.iter().position(|f| {
+        f.queue_flags.contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0
+    })
 }
 
 pub struct Context {
@@ -265,16 +277,11 @@ impl Context {
         }
 
         let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-        let queue_family = families
-            .iter()
-            .position(|f| {
-                f.queue_flags.contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0
-            })
-            .ok_or_else(|| Error::MissingFeature {
-                device: info.name.clone(),
-                feature: "a graphics+compute queue with timestamps",
-                needed_by: "vct",
-            })? as u32;
+        let queue_family = queue_family_of(&families).ok_or_else(|| Error::MissingFeature {
+            device: info.name.clone(),
+            feature: "a graphics+compute queue with timestamps",
+            needed_by: "vct",
+        })? as u32;
         let priorities = [1.0];
         let queue_info =
             [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
@@ -377,6 +384,31 @@ impl Context {
         unsafe { self.device.device_wait_idle() }.vk("vkDeviceWaitIdle")
     }
 
+    /// Binds sparse memory on the queue (`vkQueueBindSparse`) and waits for it, so the bound
+    /// blocks are resident before any later submission uses them.
+    pub fn bind_sparse_and_wait(&self, what: &str, info: &vk::BindSparseInfo) -> Result<()> {
+        let d = &self.device;
+        unsafe {
+            let fence = d.create_fence(&vk::FenceCreateInfo::default(), None).vk("vkCreateFence")?;
+            let _pool = self.command_pool.lock().expect("command pool mutex poisoned");
+            let r = d
+                .queue_bind_sparse(self.queue, std::slice::from_ref(info), fence)
+                .vk("vkQueueBindSparse")
+                .and_then(|_| self.wait_fence(what, fence));
+            d.destroy_fence(fence, None);
+            r
+        }
+    }
+
+    /// Waits for `fence`, reporting a hung device after GPU_TIMEOUT_S.
+    fn wait_fence(&self, what: &str, fence: vk::Fence) -> Result<()> {
+        match unsafe { self.device.wait_for_fences(&[fence], true, GPU_TIMEOUT_S * 1_000_000_000) } {
+            Ok(()) => Ok(()),
+            Err(vk::Result::TIMEOUT) => Err(Error::Timeout(what.to_string(), GPU_TIMEOUT_S)),
+            Err(result) => Err(Error::Vulkan { call: "vkWaitForFences", result }),
+        }
+    }
+
     /// Records `record` into a fresh command buffer, submits it and waits for it to finish.
     pub fn submit_and_wait(&self, what: &str, record: impl FnOnce(vk::CommandBuffer)) -> Result<()> {
         let d = &self.device;
@@ -394,13 +426,10 @@ impl Context {
             let fence = d.create_fence(&vk::FenceCreateInfo::default(), None).vk("vkCreateFence")?;
             let cmds = [cmd];
             let submit = [vk::SubmitInfo::default().command_buffers(&cmds)];
-            let r = d.queue_submit(self.queue, &submit, fence).vk("vkQueueSubmit").and_then(|_| {
-                match d.wait_for_fences(&[fence], true, GPU_TIMEOUT_S * 1_000_000_000) {
-                    Ok(()) => Ok(()),
-                    Err(vk::Result::TIMEOUT) => Err(Error::Timeout(what.to_string(), GPU_TIMEOUT_S)),
-                    Err(result) => Err(Error::Vulkan { call: "vkWaitForFences", result }),
-                }
-            });
+            let r = d
+                .queue_submit(self.queue, &submit, fence)
+                .vk("vkQueueSubmit")
+                .and_then(|_| self.wait_fence(what, fence));
             d.destroy_fence(fence, None);
             r
         })();

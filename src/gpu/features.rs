@@ -19,10 +19,24 @@ pub enum Feature {
     NoAttachmentMsaa4,
     /// `VK_EXT_conservative_rasterization` (hardware-conservative voxelization).
     ConservativeRasterization,
+    /// `sparseBinding` and `sparseResidencyImage3D`: 3D images whose memory is bound block by
+    /// block (resident voxel storage).
+    SparseResidencyImage3D,
+    /// Reads of unbound blocks return zero and writes to them are discarded
+    /// (`residencyNonResidentStrict`), so a resident volume reads as its dense twin.
+    ResidencyNonResidentStrict,
+    /// Sparse blocks may share memory (`sparseResidencyAliased`): where reads of unbound blocks
+    /// are not defined, every block without a brick is bound to one shared block of zeros.
+    SparseResidencyAliased,
+    /// Sparse 3D images use the standard 64 KiB block shapes (`residencyStandard3DBlockShape`),
+    /// so the memory report can tell what a resident texture binds before it is made.
+    ResidencyStandard3DBlockShape,
+    /// The queue vct submits to also binds sparse memory.
+    SparseBindingQueue,
 }
 
 impl Feature {
-    pub const ALL: [Feature; 11] = [
+    pub const ALL: [Feature; 16] = [
         Feature::DynamicRendering,
         Feature::Synchronization2,
         Feature::GeometryShader,
@@ -34,6 +48,11 @@ impl Feature {
         Feature::DepthClamp,
         Feature::NoAttachmentMsaa4,
         Feature::ConservativeRasterization,
+        Feature::SparseResidencyImage3D,
+        Feature::ResidencyNonResidentStrict,
+        Feature::SparseResidencyAliased,
+        Feature::ResidencyStandard3DBlockShape,
+        Feature::SparseBindingQueue,
     ];
 
     pub fn name(self) -> &'static str {
@@ -49,6 +68,11 @@ impl Feature {
             Feature::DepthClamp => "depthClamp",
             Feature::NoAttachmentMsaa4 => "framebufferNoAttachmentsSampleCounts includes 4",
             Feature::ConservativeRasterization => "VK_EXT_conservative_rasterization",
+            Feature::SparseResidencyImage3D => "sparseBinding + sparseResidencyImage3D",
+            Feature::ResidencyNonResidentStrict => "residencyNonResidentStrict",
+            Feature::SparseResidencyAliased => "sparseResidencyAliased",
+            Feature::ResidencyStandard3DBlockShape => "residencyStandard3DBlockShape",
+            Feature::SparseBindingQueue => "a graphics queue with VK_QUEUE_SPARSE_BINDING_BIT",
         }
     }
 }
@@ -61,6 +85,9 @@ pub struct FeatureSet {
     pub synchronization2: bool,
     pub no_attachment_samples: vk::SampleCountFlags,
     pub conservative_rasterization: bool,
+    pub sparse: vk::PhysicalDeviceSparseProperties,
+    /// The graphics+compute queue family vct would use also binds sparse memory.
+    pub sparse_queue: bool,
 }
 
 impl FeatureSet {
@@ -78,6 +105,11 @@ impl FeatureSet {
             Feature::DepthClamp => c.depth_clamp == vk::TRUE,
             Feature::NoAttachmentMsaa4 => self.no_attachment_samples.contains(vk::SampleCountFlags::TYPE_4),
             Feature::ConservativeRasterization => self.conservative_rasterization,
+            Feature::SparseResidencyImage3D => c.sparse_binding == vk::TRUE && c.sparse_residency_image3_d == vk::TRUE,
+            Feature::ResidencyNonResidentStrict => self.sparse.residency_non_resident_strict == vk::TRUE,
+            Feature::SparseResidencyAliased => c.sparse_residency_aliased == vk::TRUE,
+            Feature::ResidencyStandard3DBlockShape => self.sparse.residency_standard3_d_block_shape == vk::TRUE,
+            Feature::SparseBindingQueue => self.sparse_queue,
         }
     }
 
@@ -93,5 +125,8 @@ impl FeatureSet {
             .shader_storage_image_extended_formats(c.shader_storage_image_extended_formats == vk::TRUE)
             .depth_clamp(c.depth_clamp == vk::TRUE)
             .sampler_anisotropy(c.sampler_anisotropy == vk::TRUE)
+            .sparse_binding(c.sparse_binding == vk::TRUE)
+            .sparse_residency_image3_d(c.sparse_residency_image3_d == vk::TRUE)
+            .sparse_residency_aliased(c.sparse_residency_aliased == vk::TRUE)
     }
 }

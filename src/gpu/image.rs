@@ -93,7 +93,7 @@ pub struct ImageView {
 }
 
 impl ImageView {
-    fn new(
+    pub(super) fn new(
         ctx: &Arc<Context>,
         image: vk::Image,
         desc: &ImageDesc,
@@ -126,9 +126,9 @@ impl Drop for ImageView {
 }
 
 pub struct Image {
-    ctx: Arc<Context>,
+    pub(super) ctx: Arc<Context>,
     pub raw: vk::Image,
-    allocation: Option<Allocation>,
+    pub(super) allocation: Option<Allocation>,
     pub desc: ImageDesc,
     /// View of every mip level.
     pub view: ImageView,
@@ -221,10 +221,11 @@ impl Image {
 impl Drop for Image {
     fn drop(&mut self) {
         self.mip_views.clear();
+        // The image first: a resident image's memory stays bound until it is destroyed.
+        unsafe { self.ctx.device.destroy_image(self.raw, None) };
         if let Some(a) = self.allocation.take() {
             self.ctx.free(a);
         }
-        unsafe { self.ctx.device.destroy_image(self.raw, None) };
     }
 }
 

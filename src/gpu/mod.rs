@@ -9,6 +9,7 @@ pub mod features;
 pub mod image;
 pub mod pipeline;
 pub mod scope;
+pub mod sparse;
 pub mod swapchain;
 pub mod timer;
 

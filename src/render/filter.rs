@@ -70,7 +70,7 @@ impl FilterPass {
         let list = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, c);
         let (st, sb) = (vk::DescriptorType::STORAGE_IMAGE, vk::DescriptorType::STORAGE_BUFFER);
         let dims: [u32; 3] = voxels.grid.dims.into();
-        let bricks = voxels.bricks.sparse().then(|| voxels.bricks.capacity.saturating_sub(1) as u64);
+        let bricks = voxels.bricks.stored_bricks();
         let parents = listed.then(|| ParentLists::new(ctx, dims, volume.levels, occupied, bricks)).transpose()?;
         // Level l's list (the occupied voxels' own list stands in when the dispatch is dense:
         // the binding must hold a buffer).

@@ -13,13 +13,15 @@ use crate::voxel::VoxelGrid;
 
 /// What decides a renderer's allocations besides its grid.
 #[derive(Clone, Copy, Debug)]
-pub struct Layout {
+pub struct Layout<'a> {
     /// The voxel-space bounce target.
     pub bounces: bool,
     /// The mip levels' lists of occupied texels.
     pub listed: bool,
-    /// Brick-pool slots (the empty one included) of sparse storage; `None`: dense.
+    /// Brick-pool slots (the empty one included) of sparse storage; `None`: dense or resident.
     pub pool: Option<u32>,
+    /// Resident storage: the bricks whose blocks are bound.
+    pub resident: Option<&'a bricks::Residency>,
     /// A full-size history for temporal filtering.
     pub temporal: bool,
     /// The sampled chains above level 0.
@@ -52,28 +54,34 @@ impl MemoryReport {
     /// volumes, the page table and the occupied-voxel lists. The cube column is the dense
     /// layout over the bounding cube.
     pub fn for_grid(grid: &VoxelGrid, layout: &Layout) -> Self {
-        let Layout { bounces, listed, pool, temporal, chains } = *layout;
+        let Layout { bounces, listed, pool, resident, temporal, chains } = *layout;
         let stored = pool.map_or(extent_of(grid.dims), bricks::pool_extent);
         // The same textures, dense, over the bounding cube of the grid's longest axis.
         let cube = VoxelGrid { dims: glam::UVec3::splat(grid.longest()), ..*grid };
         let named = |grid: &VoxelGrid, extent| {
             let voxel = voxel_desc(extent);
-            let mut v: Vec<(&'static str, ImageDesc)> = VOXEL_TEXTURES.iter().map(|&n| (n, voxel)).collect();
+            let mut v: Vec<(&'static str, ImageDesc, bool)> =
+                VOXEL_TEXTURES.iter().map(|&n| (n, voxel, true)).collect();
             v.extend(RadianceDescs::new(grid, bounces, extent, temporal, chains).named());
             v
+        };
+        // A resident per-voxel texture holds the blocks bound to it.
+        let bytes = |d: &ImageDesc, per_voxel: bool| match resident {
+            Some(r) if per_voxel => r.bound_bytes(grid.dims, d.format),
+            _ => d.texel_bytes(),
         };
         let mut rows: Vec<MemoryRow> = named(grid, stored)
             .into_iter()
             .zip(named(&cube, extent_of(cube.dims)))
-            .map(|((name, d), (_, cube))| MemoryRow {
+            .map(|((name, d, per_voxel), (_, cube, _))| MemoryRow {
                 name,
                 extent: d.size(),
                 mips: d.mip_levels,
-                bytes: d.texel_bytes(),
+                bytes: bytes(&d, per_voxel),
                 cube_bytes: cube.texel_bytes(),
             })
             .collect();
-        if pool.is_some() {
+        if pool.is_some() || resident.is_some() {
             let table = bricks::table_bytes(grid);
             rows.push(MemoryRow {
                 name: "brick page table",
@@ -84,9 +92,14 @@ impl MemoryReport {
             });
         }
         let list = crate::voxel::occupied::list_bytes;
-        let occupied = list(pool.map_or(grid.voxel_count() as u64, |p| bricks::voxel_room(grid, p)));
+        let room = match (pool, resident) {
+            (Some(p), _) => bricks::voxel_room(grid, p),
+            (None, Some(r)) => r.voxel_room(),
+            (None, None) => grid.voxel_count() as u64,
+        };
+        let occupied = list(room);
         if listed {
-            let bricks = pool.map(|p| p.saturating_sub(1) as u64);
+            let bricks = pool.map(|p| p.saturating_sub(1) as u64).or(resident.map(|r| r.bricks.len() as u64));
             let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels(), bricks);
             let n = grid.longest();
             rows.push(MemoryRow {

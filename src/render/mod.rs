@@ -245,7 +245,12 @@ impl Renderer {
         // Light lives in occupied voxels only: a voxel the temporal blend would leave lit after
         // its geometry left it (a trail behind a moving volume) stays dark.
         let listed = options.work == Work::Occupied;
-        let sparse = options.storage.resolve(options.follow.is_some()) == Storage::Sparse;
+        let request = crate::voxel::bricks::StorageRequest {
+            storage: options.storage,
+            bricks: options.bricks,
+            moving: options.follow.is_some(),
+        };
+        let sparse = request.resolve(ctx) == Storage::Sparse;
         if sparse && options.follow.is_some() && scene.settings.gi.temporal < 1.0 {
             // The history is stored as level 0: in a moving pool its slots change every frame.
             return Err(crate::Error::param(
@@ -258,18 +263,14 @@ impl Renderer {
         let bounces = scene.settings.gi.bounces > 1;
         let temporal = scene.settings.gi.temporal < 1.0;
         let chains = Chains::read_by(scene.settings.gi.filter, matches!(options.view, View::Radiance(_)));
-        let need = |pool| {
-            let layout = memory::Layout { bounces, listed, pool, temporal, chains };
+        let need = |pool: Option<u32>, resident: Option<&crate::voxel::bricks::Residency>| {
+            let layout = memory::Layout { bounces, listed, pool, resident, temporal, chains };
             memory::MemoryReport::for_grid(&grid, &layout).bytes
         };
-        crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(1)))?;
-        let request = crate::voxel::bricks::StorageRequest {
-            storage: options.storage,
-            bricks: options.bricks,
-            moving: options.follow.is_some(),
-        };
+        crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(1), None))?;
         let (voxels, voxelizer) = crate::voxel::build(ctx, &scene, &scene_gpu, grid, options.method, request)?;
-        crate::voxel::volume::check_fits(ctx, &grid, need(sparse.then_some(voxels.bricks.capacity)))?;
+        let pool = sparse.then_some(voxels.bricks.capacity);
+        crate::voxel::volume::check_fits(ctx, &grid, need(pool, voxels.bricks.residency.as_ref()))?;
         let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
@@ -433,6 +434,7 @@ impl Renderer {
             bounces: self.radiance.bounced.is_some(),
             listed: self.filter.is_listed(),
             pool: b.sparse().then_some(b.capacity),
+            resident: b.residency.as_ref(),
             temporal: self.radiance.has_history(),
             chains: self.radiance.chains,
         };

@@ -126,18 +126,20 @@ impl RadianceDescs {
         }
     }
 
-    /// Every image with its name, in the report's order.
-    pub fn named(&self) -> Vec<(&'static str, ImageDesc)> {
-        let mut v = vec![("injected radiance", self.injected)];
-        v.extend(self.radiance.map(|r| ("radiance level 0", r)));
+    /// Every image with its name and whether it is a per-voxel target (stored as the voxel
+    /// textures are), in the report's order.
+    pub fn named(&self) -> Vec<(&'static str, ImageDesc, bool)> {
+        let mut v = vec![("injected radiance", self.injected, true)];
+        v.extend(self.radiance.map(|r| ("radiance level 0", r, true)));
         v.extend([
-            ("radiance chain", self.chain),
-            ("radiance directional chains", self.aniso),
-            ("lit side", self.lit_side),
-            ("radiance history", self.history),
-            ("radiance moment", self.moment),
+            ("radiance chain", self.chain, false),
+            ("radiance directional chains", self.aniso, false),
+            ("lit side", self.lit_side, true),
+            // One texel, never read, without temporal filtering.
+            ("radiance history", self.history, self.history.extent == self.injected.extent),
+            ("radiance moment", self.moment, false),
         ]);
-        v.extend(self.bounced.map(|b| ("bounced radiance", b)));
+        v.extend(self.bounced.map(|b| ("bounced radiance", b, true)));
         v
     }
 }
@@ -167,7 +169,15 @@ impl RadianceVolume {
         let mut images = d
             .named()
             .into_iter()
-            .map(|(name, desc)| Image::new(ctx, name, desc))
+            .map(
+                |(name, desc, per_voxel)| {
+                    if per_voxel {
+                        voxels.bricks.image(name, desc)
+                    } else {
+                        Image::new(ctx, name, desc)
+                    }
+                },
+            )
             .collect::<Result<Vec<_>>>()?
             .into_iter();
         let mut next = || images.next().expect("one image per description");

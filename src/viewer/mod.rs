@@ -375,13 +375,19 @@ impl App {
         })?;
         r.renderer.frame_recorded();
         if let Err(e) = bricks {
-            // A moving volume met more geometry than its pool holds: grow it, and say so.
-            let u = r.renderer.voxels.bricks.usage();
-            let grown = u.needed + (u.needed as f64 * crate::voxel::MOVING_POOL_HEADROOM).ceil() as u32;
-            println!("note: {e}; the pool grows to {grown} bricks");
-            let options = RenderOptions { bricks: Some(grown), ..r.renderer.options };
-            Self::rebuild(r, options)?;
-            r.renderer.options.bricks = None;
+            if r.renderer.voxels.bricks.storage == crate::voxel::bricks::Storage::Resident {
+                // Geometry outside the census' bricks: census again, and say so.
+                println!("note: {e}; binding the bricks of a new census");
+                Self::rebuild(r, r.renderer.options)?;
+            } else {
+                // A moving volume met more geometry than its pool holds: grow it, and say so.
+                let u = r.renderer.voxels.bricks.usage();
+                let grown = u.needed + (u.needed as f64 * crate::voxel::MOVING_POOL_HEADROOM).ceil() as u32;
+                println!("note: {e}; the pool grows to {grown} bricks");
+                let options = RenderOptions { bricks: Some(grown), ..r.renderer.options };
+                Self::rebuild(r, options)?;
+                r.renderer.options.bricks = None;
+            }
         }
         let timings = timings?;
         if !timings.is_empty() {

@@ -9,7 +9,10 @@
 //! than the pool holds is an error naming both counts, never silent holes ([`Bricks::check`]).
 //!
 //! Dense storage (`--storage dense`) keeps every texture at the grid's extent; the shaders then
-//! skip the table (specialization constant `SPARSE`).
+//! skip the table (specialization constant `SPARSE`). Resident storage (`--storage resident`,
+//! Vulkan sparse residency where the device offers it) keeps the grid's extent too, so the
+//! shaders read it as dense, but binds memory only to the sparse blocks that hold a brick the
+//! census found ([`Residency`], `gpu::sparse`).
 
 use std::sync::Arc;
 
@@ -20,7 +23,7 @@ use gpu_allocator::MemoryLocation;
 use super::VoxelGrid;
 use crate::config::{BRICK_REFUSED, BRICK_SHIFT, BRICK_SIZE};
 use crate::error::{Error, Result};
-use crate::gpu::{self, scope, Buffer, Context};
+use crate::gpu::{self, scope, Buffer, Context, Feature, Image, ImageDesc};
 
 /// Where the per-voxel textures live.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -34,13 +37,58 @@ pub enum Storage {
     /// A page table and a pool of the occupied bricks (smaller on every scene measured,
     /// docs/benchmarks.md "Sparse storage").
     Sparse,
+    /// Vulkan sparse residency: every texture at the grid's extent (read as dense, without a
+    /// table), with memory bound only to the blocks that hold an occupied brick.
+    Resident,
+}
+
+/// What resident storage needs of the device, besides one of [`RESIDENCY_UNBOUND`].
+pub const RESIDENCY: [Feature; 3] =
+    [Feature::SparseResidencyImage3D, Feature::ResidencyStandard3DBlockShape, Feature::SparseBindingQueue];
+
+/// How unbound blocks come to read zero: the device's guarantee, or else one shared block of
+/// zeros bound in their place (gpu::sparse).
+pub const RESIDENCY_UNBOUND: [Feature; 2] = [Feature::ResidencyNonResidentStrict, Feature::SparseResidencyAliased];
+
+/// Fails with an error naming what resident storage lacks on `ctx`'s device.
+pub fn require_residency(ctx: &Context) -> Result<()> {
+    let needed_by = "resident voxel storage (--storage resident)";
+    ctx.require(&RESIDENCY, needed_by)?;
+    if !RESIDENCY_UNBOUND.iter().any(|&f| ctx.info.features.has(f)) {
+        return Err(Error::MissingFeature {
+            device: ctx.info.name.clone(),
+            feature: "residencyNonResidentStrict or sparseResidencyAliased",
+            needed_by,
+        });
+    }
+    Ok(())
+}
+
+/// The standard sparse block of a 3D image (Vulkan spec, "Standard Sparse Image Block
+/// Shapes"): 64 KiB of texels of `texel_bytes` bytes.
+pub fn standard_block(texel_bytes: usize) -> [u32; 3] {
+    match texel_bytes {
+        1 => [64, 32, 32],
+        2 => [32, 32, 32],
+        4 => [32, 32, 16],
+        8 => [32, 16, 16],
+        _ => [16, 16, 16],
+    }
+}
+
+/// Whether `ctx`'s device offers resident storage.
+pub fn residency_offered(ctx: &Context) -> bool {
+    require_residency(ctx).is_ok()
 }
 
 impl Storage {
-    /// What `Auto` means for a grid that moves or not.
-    pub fn resolve(self, moving: bool) -> Storage {
+    /// What `Auto` means for a grid that moves or not, on `ctx`'s device: residency where the
+    /// device offers it, else the brick pool; dense for a moving grid, whose occupancy no census
+    /// at its first place bounds.
+    pub fn resolve(self, ctx: &Context, moving: bool) -> Storage {
         match self {
             Storage::Auto if moving => Storage::Dense,
+            Storage::Auto if residency_offered(ctx) => Storage::Resident,
             Storage::Auto => Storage::Sparse,
             s => s,
         }
@@ -51,7 +99,62 @@ impl Storage {
             Storage::Auto => "auto",
             Storage::Dense => "dense",
             Storage::Sparse => "sparse",
+            Storage::Resident => "resident",
         }
+    }
+}
+
+/// The bricks a census found occupied, which decide the blocks of memory a resident texture
+/// binds: a block holds memory when one of these bricks lies in it (bricks are 2³ and block
+/// sides even, so a brick never straddles two blocks).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Residency {
+    /// Brick coordinates, in brick order.
+    pub bricks: Vec<UVec3>,
+    /// Each texture also holds the one block of zeros that its blocks without a brick share
+    /// (a device whose unbound blocks do not read zero; gpu::sparse).
+    pub shared_zero: bool,
+}
+
+impl Residency {
+    /// From a census table (`pages`: nonzero where a brick was asked for).
+    pub fn from_pages(grid: &VoxelGrid, pages: &[u32], shared_zero: bool) -> Self {
+        let count = brick_count(grid);
+        let bricks = pages
+            .iter()
+            .enumerate()
+            .filter(|(_, &p)| p != 0)
+            .map(|(i, _)| {
+                let i = i as u32;
+                UVec3::new(i % count.x, (i / count.x) % count.y, i / (count.x * count.y))
+            })
+            .collect();
+        Residency { bricks, shared_zero }
+    }
+
+    /// The blocks of `shape` texels (one texel a voxel) that hold an occupied brick, each once.
+    pub fn blocks(&self, shape: [u32; 3]) -> Vec<[u32; 3]> {
+        let shape = UVec3::from(shape).max(UVec3::ONE);
+        let mut blocks: Vec<[u32; 3]> = self.bricks.iter().map(|&b| ((b * BRICK_SIZE) / shape).into()).collect();
+        blocks.sort_unstable_by_key(|b| (b[2], b[1], b[0]));
+        blocks.dedup();
+        blocks
+    }
+
+    /// The most voxels the bricks hold (the occupied list's room).
+    pub fn voxel_room(&self) -> u64 {
+        self.bricks.len() as u64 * (BRICK_SIZE as u64).pow(3)
+    }
+
+    /// Bytes a resident texture of `format` over a grid of `dims` binds: its standard blocks
+    /// that hold a brick, and the shared block of zeros where the others need it.
+    pub fn bound_bytes(&self, dims: UVec3, format: vk::Format) -> u64 {
+        let texel = crate::gpu::image::texel_size(format);
+        let shape = standard_block(texel);
+        let blocks = self.blocks(shape).len() as u64;
+        let all = (dims + UVec3::from(shape) - 1) / UVec3::from(shape);
+        let shared = (self.shared_zero && blocks < all.as_u64vec3().element_product()) as u64;
+        (blocks + shared) * UVec3::from(shape).as_u64vec3().element_product() * texel as u64
     }
 }
 
@@ -64,6 +167,17 @@ pub struct StorageRequest {
     /// The grid moves with the camera (resolves `Auto` to dense; a sparse pool gets headroom
     /// and claims its bricks every frame).
     pub moving: bool,
+}
+
+impl StorageRequest {
+    /// The storage this request gets on `ctx`'s device: `Auto` with a pool size given is the
+    /// pool, else as [`Storage::resolve`] says.
+    pub fn resolve(&self, ctx: &Context) -> Storage {
+        match self.storage {
+            Storage::Auto if self.bricks.is_some() && !self.moving => Storage::Sparse,
+            s => s.resolve(ctx, self.moving),
+        }
+    }
 }
 
 /// Bytes of the table's header (`Bricks` in bricks.glsl: eight uints).
@@ -131,15 +245,17 @@ pub struct Bricks {
     /// The slots were given by [`Bricks::assign`] and stay from frame to frame (only bricks
     /// new to the grid are claimed); otherwise the table is emptied every frame.
     kept: bool,
+    /// Resident storage: the bricks whose blocks hold memory.
+    pub residency: Option<Residency>,
 }
 
 impl Bricks {
     /// A table over `grid` for a pool of `capacity` slots (the empty one included); dense
     /// storage keeps a header-only table, bound but never read.
     pub fn new(ctx: &Arc<Context>, grid: &VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
-        let storage = storage.resolve(false);
+        let storage = storage.resolve(ctx, false);
         let (count, capacity) =
-            if storage == Storage::Dense { (UVec3::ZERO, 0) } else { (brick_count(grid), capacity.max(1)) };
+            if storage == Storage::Sparse { (brick_count(grid), capacity.max(1)) } else { (UVec3::ZERO, 0) };
         let slots = pool_slots(capacity);
         let limit = ctx.info.limits.max_image_dimension3_d / BRICK_SIZE;
         if storage == Storage::Sparse && slots.max_element() > limit {
@@ -161,26 +277,71 @@ impl Bricks {
         let header = [1, capacity, slots.x.trailing_zeros(), slots.y.trailing_zeros(), count.x, count.y, count.z, 0];
         // Until the first voxelization is read back: no brick needed yet.
         readback.write(0, bytemuck::cast_slice(&header));
-        Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity, kept: false })
+        Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity, kept: false, residency: None })
+    }
+
+    /// Resident storage over `grid`: memory for the blocks of the bricks a census asked for
+    /// (`asked`: a census table, nonzero where a brick was asked for). The table keeps them
+    /// marked, so the voxelizers refuse (and count) a write outside them instead of losing it
+    /// to an unbound block (`claim_brick` in bricks.glsl with RESIDENT); passes that read the
+    /// textures address them as dense and skip the table. The GPU must be idle.
+    pub fn resident(ctx: &Arc<Context>, grid: &VoxelGrid, asked: &[u32]) -> Result<Self> {
+        let mut b = Self::new(ctx, grid, Storage::Sparse, 1)?;
+        let marks: Vec<u32> = asked.iter().map(|&a| (a != 0) as u32).collect();
+        b.upload_pages(&marks)?;
+        b.storage = Storage::Resident;
+        b.residency = Some(Residency::from_pages(grid, asked, !crate::gpu::sparse::unbound_reads_zero(ctx)));
+        b.kept = true;
+        Ok(b)
     }
 
     pub fn sparse(&self) -> bool {
         self.storage == Storage::Sparse
     }
 
+    /// The bricks that hold memory: the pool's slots (the empty one not counted), or the
+    /// resident census' bricks; `None` when dense.
+    pub fn stored_bricks(&self) -> Option<u64> {
+        match &self.residency {
+            _ if self.sparse() => Some(self.capacity.saturating_sub(1) as u64),
+            Some(r) => Some(r.bricks.len() as u64),
+            None => None,
+        }
+    }
+
+    /// Bytes a per-voxel texture of `desc` (at [`Bricks::extent`]) holds: the blocks bound
+    /// when resident, else all of it.
+    pub fn bytes_of(&self, desc: &ImageDesc) -> u64 {
+        let e = desc.extent;
+        let dims = UVec3::new(e.width, e.height, e.depth);
+        self.residency.as_ref().map_or(desc.texel_bytes(), |r| r.bound_bytes(dims, desc.format))
+    }
+
+    /// A per-voxel texture of `desc` (at [`Bricks::extent`]): bound block by block when
+    /// resident, else whole.
+    pub fn image(&self, name: &str, desc: ImageDesc) -> Result<Image> {
+        match &self.residency {
+            Some(r) => {
+                let shape = crate::gpu::sparse::block_shape(&self.ctx, &desc)?;
+                Image::resident(&self.ctx, name, desc, &r.blocks(shape))
+            }
+            None => Image::new(&self.ctx, name, desc),
+        }
+    }
+
     /// Specialization constants for a shader that includes bricks.glsl: its own constant 0
-    /// (`first`), then SPARSE (constant 1).
-    pub fn spec(&self, first: u32) -> [u32; 2] {
-        [first, self.sparse() as u32]
+    /// (`first`), then SPARSE (constant 1) and RESIDENT (constant 2).
+    pub fn spec(&self, first: u32) -> [u32; 3] {
+        [first, self.sparse() as u32, (self.storage == Storage::Resident) as u32]
     }
 
     /// The most voxels this layout can hold: the grid's, or the pool's slots' (each
     /// occupied voxel lies in a brick with a slot, so the occupied list needs no more room).
     pub fn voxel_room(&self, grid: &VoxelGrid) -> u64 {
-        if self.sparse() {
-            voxel_room(grid, self.capacity)
-        } else {
-            grid.voxel_count() as u64
+        match &self.residency {
+            _ if self.sparse() => voxel_room(grid, self.capacity),
+            Some(r) => r.voxel_room(),
+            None => grid.voxel_count() as u64,
         }
     }
 
@@ -227,15 +388,20 @@ impl Bricks {
                 format!("the census asked for {} bricks; the pool holds {}", next - 1, self.capacity.saturating_sub(1)),
             ));
         }
-        let staging = Buffer::from_slice(&self.ctx, "brick pages", vk::BufferUsageFlags::TRANSFER_SRC, &pages)?;
+        self.upload_pages(&pages)?;
+        self.header[0] = next;
+        self.kept = true;
+        Ok(())
+    }
+
+    /// Writes the table's entries (the GPU must be idle).
+    fn upload_pages(&self, pages: &[u32]) -> Result<()> {
+        let staging = Buffer::from_slice(&self.ctx, "brick pages", vk::BufferUsageFlags::TRANSFER_SRC, pages)?;
         let ctx = &self.ctx;
         ctx.submit_and_wait("brick slots", |cmd| {
             gpu::memory_barrier(ctx, cmd, scope::ANY, scope::TRANSFER_WRITE);
             gpu::copy_buffer_at(ctx, cmd, &staging, &self.table, HEADER, staging.size);
-        })?;
-        self.header[0] = next;
-        self.kept = true;
-        Ok(())
+        })
     }
 
     /// Copies the header to the host after the voxelizers' writes (made visible to transfers
@@ -260,10 +426,21 @@ impl Bricks {
     /// An error when the last finished voxelization needed more bricks than the pool holds
     /// (its image then misses the refused bricks), or a claim gave up.
     pub fn check(&self) -> Result<()> {
+        let u = self.usage();
+        if self.storage == Storage::Resident && u.needed > 0 {
+            return Err(Error::param(
+                "storage",
+                format!(
+                    "the voxelizer wrote into {} bricks of {BRICK_SIZE}³ voxels outside the blocks that resident storage \
+                     bound for the census' {} (the scene or grid changed after the census)",
+                    u.needed,
+                    self.residency.as_ref().map_or(0, |r| r.bricks.len())
+                ),
+            ));
+        }
         if !self.sparse() {
             return Ok(());
         }
-        let u = self.usage();
         if u.needed > u.capacity {
             return Err(Error::param(
                 "bricks",
@@ -335,6 +512,33 @@ mod tests {
             assert!(s.x * s.y * (s.z - 1) < c, "{c}: a whole empty layer in {s}");
             assert!(s.x.is_power_of_two() && s.y.is_power_of_two() && s.x >= s.y, "{c}: {s}");
             assert!((s.x * s.y * s.z) as f64 <= c as f64 * 1.05 + 64.0, "{c}: {s} wastes slots");
+        }
+    }
+
+    #[test]
+    fn residency_binds_each_block_that_holds_a_census_brick_once() {
+        let grid = VoxelGrid { origin: glam::Vec3::ZERO, voxel: 1.0, dims: UVec3::new(64, 32, 32) };
+        let count = brick_count(&grid);
+        let index = |b: UVec3| ((b.z * count.y + b.y) * count.x + b.x) as usize;
+        let mut pages = vec![0u32; count.element_product() as usize];
+        // Two bricks in the first 32×32×16 block, one in the block at x 32..64, z 16..32.
+        for b in [UVec3::new(0, 0, 0), UVec3::new(15, 15, 7), UVec3::new(16, 3, 8)] {
+            pages[index(b)] = BRICK_REFUSED;
+        }
+        let mut r = Residency::from_pages(&grid, &pages, false);
+        assert_eq!(r.bricks, vec![UVec3::new(0, 0, 0), UVec3::new(15, 15, 7), UVec3::new(16, 3, 8)]);
+        assert_eq!(r.voxel_room(), 3 * 8);
+        assert_eq!(r.blocks(standard_block(4)), vec![[0, 0, 0], [1, 0, 1]]);
+        // RGBA16F blocks are 32×16×16: the second brick (voxels 30..32, 30..32, 14..16) has one of its own.
+        assert_eq!(r.blocks(standard_block(8)), vec![[0, 0, 0], [0, 1, 0], [1, 0, 1]]);
+        assert_eq!(r.bound_bytes(grid.dims, vk::Format::R32_UINT), 2 * 65536);
+        assert_eq!(r.bound_bytes(grid.dims, vk::Format::R16G16B16A16_SFLOAT), 3 * 65536);
+        // Where unbound blocks need the shared block of zeros, each texture holds one more.
+        r.shared_zero = true;
+        assert_eq!(r.bound_bytes(grid.dims, vk::Format::R32_UINT), 3 * 65536);
+        for t in [1, 2, 4, 8, 16] {
+            let s = standard_block(t);
+            assert_eq!(s.iter().product::<u32>() as usize * t, 65536, "{t} bytes a texel");
         }
     }
 

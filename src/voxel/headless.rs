@@ -19,6 +19,10 @@ pub struct VoxelRun {
     pub notes: Vec<String>,
     /// Bricks the grid occupies and the pool's slots (sparse storage only).
     pub bricks: Option<super::bricks::BrickUse>,
+    /// Where the textures lived (`Auto` resolved).
+    pub storage: Storage,
+    /// Resident storage: the bricks whose blocks held memory.
+    pub residency: Option<super::bricks::Residency>,
 }
 
 impl VoxelRun {
@@ -82,5 +86,7 @@ pub fn voxelize_stored(
         gpu_ms: times[times.len() / 2],
         notes: voxelizer.notes(),
         bricks: volume.bricks.sparse().then(|| volume.bricks.usage()),
+        storage: volume.bricks.storage,
+        residency: volume.bricks.residency.clone(),
     })
 }

@@ -266,7 +266,8 @@ pub const MOVING_POOL_HEADROOM: f64 = 0.25;
 /// voxelization into a pool of no slots counts the bricks the scene occupies, and the pool
 /// gets that many slots (plus MOVING_POOL_HEADROOM of them when the grid is `moving`), or
 /// `bricks` slots when given. A fixed grid keeps the census' bricks from frame to frame, in
-/// brick order ([`bricks::Bricks::assign`]). `Auto` storage is resolved for `moving` first.
+/// brick order ([`bricks::Bricks::assign`]). Resident storage binds memory for the census'
+/// bricks ([`bricks::Bricks::resident`]). `Auto` storage is resolved for `moving` first.
 pub fn build(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -275,28 +276,69 @@ pub fn build(
     method: VoxelizeMethod,
     request: bricks::StorageRequest,
 ) -> Result<(VoxelVolume, Voxelizer)> {
-    let bricks::StorageRequest { storage, bricks, moving } = request;
-    let storage = storage.resolve(moving);
+    let bricks::StorageRequest { bricks, moving, .. } = request;
+    let storage = request.resolve(ctx);
     let headroom = if moving { MOVING_POOL_HEADROOM } else { 0.0 };
     let sized = |n: u32| VoxelVolume::new(ctx, grid, storage, n + 1);
-    if storage == bricks::Storage::Dense {
-        let volume = sized(0)?;
-        let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
-        return Ok((volume, voxelizer));
+    match storage {
+        bricks::Storage::Dense => {
+            let volume = sized(0)?;
+            let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
+            return Ok((volume, voxelizer));
+        }
+        bricks::Storage::Resident => return build_resident(ctx, scene, scene_gpu, grid, method, request),
+        _ => {}
     }
     let mut volume = sized(bricks.unwrap_or(0))?;
     let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
     if bricks.is_some() {
         return Ok((volume, voxelizer));
     }
-    ctx.submit_and_wait("brick census", |cmd| voxelizer.record(cmd, scene_gpu, &volume))?;
+    let asked = census(ctx, scene_gpu, &volume, &voxelizer)?;
     let needed = volume.bricks.usage().needed;
-    let asked = (!moving).then(|| volume.bricks.read_pages()).transpose()?;
     volume.resize_pool(needed + (needed as f64 * headroom).ceil() as u32 + 1)?;
     // A fixed grid keeps the census' bricks, in brick order; a moving one claims them anew.
-    if let Some(asked) = asked {
+    if !moving {
         volume.bricks.assign(&asked)?;
     }
+    voxelizer.rebind(&volume);
+    Ok((volume, voxelizer))
+}
+
+/// Voxelizes the scene into `volume`, a pool of no slots or a resident table of no bricks, and
+/// returns its table: nonzero for each brick the scene asked for.
+fn census(ctx: &Context, scene_gpu: &SceneGpu, volume: &VoxelVolume, voxelizer: &Voxelizer) -> Result<Vec<u32>> {
+    ctx.submit_and_wait("brick census", |cmd| voxelizer.record(cmd, scene_gpu, volume))?;
+    volume.bricks.read_pages()
+}
+
+/// Resident storage: a census through a table that binds no brick finds the bricks (the
+/// voxelizer refuses and marks each one it meets, touching no texture), then the textures over
+/// the whole grid get memory in the blocks that hold them, written as dense by the same
+/// voxelizer (which refuses, and counts, a write outside the census' bricks).
+fn build_resident(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    scene_gpu: &SceneGpu,
+    grid: VoxelGrid,
+    method: VoxelizeMethod,
+    request: bricks::StorageRequest,
+) -> Result<(VoxelVolume, Voxelizer)> {
+    bricks::require_residency(ctx)?;
+    if request.moving {
+        return Err(crate::Error::param(
+            "storage",
+            "resident storage binds the blocks a census of the fixed grid finds: a volume following the camera needs --storage dense or sparse",
+        ));
+    }
+    if request.bricks.is_some() {
+        return Err(crate::Error::param("bricks", "--bricks sizes the sparse brick pool; resident storage has none"));
+    }
+    let none = vec![0; bricks::brick_count(&grid).element_product() as usize];
+    let mut volume = VoxelVolume::stored(ctx, grid, bricks::Bricks::resident(ctx, &grid, &none)?)?;
+    let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
+    let asked = census(ctx, scene_gpu, &volume, &voxelizer)?;
+    volume.rebrick(bricks::Bricks::resident(ctx, &grid, &asked)?)?;
     voxelizer.rebind(&volume);
     Ok((volume, voxelizer))
 }

@@ -102,16 +102,20 @@ fn check_list(ctx: &Context, grid: &VoxelGrid, voxels: u64) -> Result<()> {
 /// The three voxel textures in `bricks`' layout, after the heap check.
 fn textures(ctx: &Arc<Context>, grid: &VoxelGrid, bricks: &Bricks) -> Result<[Image; 3]> {
     let desc = voxel_desc(bricks.extent(grid));
-    check_fits(ctx, grid, VOXEL_TEXTURES.len() as u64 * desc.texel_bytes())?;
+    check_fits(ctx, grid, VOXEL_TEXTURES.len() as u64 * bricks.bytes_of(&desc))?;
     let [a, n, e] = VOXEL_TEXTURES;
-    Ok([Image::new(ctx, a, desc)?, Image::new(ctx, n, desc)?, Image::new(ctx, e, desc)?])
+    Ok([bricks.image(a, desc)?, bricks.image(n, desc)?, bricks.image(e, desc)?])
 }
 
 impl VoxelVolume {
     /// The textures over `grid`, dense or in a pool of `capacity` brick slots (the empty slot
     /// included).
     pub fn new(ctx: &Arc<Context>, grid: VoxelGrid, storage: Storage, capacity: u32) -> Result<Self> {
-        let bricks = Bricks::new(ctx, &grid, storage, capacity)?;
+        Self::stored(ctx, grid, Bricks::new(ctx, &grid, storage, capacity)?)
+    }
+
+    /// The textures over `grid` in `bricks`' layout.
+    pub fn stored(ctx: &Arc<Context>, grid: VoxelGrid, bricks: Bricks) -> Result<Self> {
         check_list(ctx, &grid, bricks.voxel_room(&grid))?;
         let [albedo, normal, emission] = textures(ctx, &grid, &bricks)?;
         Ok(VoxelVolume {
@@ -129,8 +133,14 @@ impl VoxelVolume {
     /// and list, the list's pipeline kept (the GPU must be idle; rebind the voxelizer after).
     /// A CPU driver keeps some memory of every pipeline it compiles, so the census reuses it.
     pub fn resize_pool(&mut self, capacity: u32) -> Result<()> {
+        let bricks = Bricks::new(&self.ctx, &self.grid, self.bricks.storage, capacity)?;
+        self.rebrick(bricks)
+    }
+
+    /// Stores the textures in `bricks`' layout from now on: new textures and list, the list's
+    /// pipeline kept (the GPU must be idle; rebind the voxelizer after).
+    pub fn rebrick(&mut self, bricks: Bricks) -> Result<()> {
         let ctx = &self.ctx;
-        let bricks = Bricks::new(ctx, &self.grid, self.bricks.storage, capacity)?;
         check_list(ctx, &self.grid, bricks.voxel_room(&self.grid))?;
         [self.albedo, self.normal, self.emission] = textures(ctx, &self.grid, &bricks)?;
         self.occupied.resize(bricks.voxel_room(&self.grid))?;

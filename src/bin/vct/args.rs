@@ -358,8 +358,10 @@ pub struct MethodArgs {
     #[arg(long)]
     pub no_depth_span: bool,
     /// Where the per-voxel textures live: a page table and a pool of the occupied 2³ bricks
-    /// (sparse), or the whole grid (dense). auto: sparse (Vulkan sparse residency is not built
-    /// yet, docs/benchmarks.md "Sparse storage").
+    /// (sparse), the whole grid (dense), or the whole grid with memory bound only where a
+    /// census found bricks (resident: Vulkan sparse residency, where the device offers it).
+    /// auto: resident where offered, else sparse; dense for --follow (docs/benchmarks.md
+    /// "Sparse storage").
     #[arg(long, value_enum, default_value = "auto")]
     pub storage: StorageArg,
     /// Sparse storage: brick slots in the pool (default: as many as a census of the scene
@@ -373,6 +375,7 @@ pub enum StorageArg {
     Auto,
     Sparse,
     Dense,
+    Resident,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -403,6 +406,7 @@ impl MethodArgs {
             StorageArg::Auto => Storage::Auto,
             StorageArg::Sparse => Storage::Sparse,
             StorageArg::Dense => Storage::Dense,
+            StorageArg::Resident => Storage::Resident,
         }
     }
 

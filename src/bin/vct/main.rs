@@ -165,11 +165,12 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
     let pool = run.bricks.map(|b| b.capacity + 1);
-    println!("storage: {}", storage.label());
+    println!("storage: {}", run.storage.label());
     let layout = vct::render::memory::Layout {
         bounces: scene.settings.gi.bounces > 1,
         listed: true,
         pool,
+        resident: run.residency.as_ref(),
         temporal: scene.settings.gi.temporal < 1.0,
         chains: vct::render::radiance::Chains::read_by(scene.settings.gi.filter, false),
     };
