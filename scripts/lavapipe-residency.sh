@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Runs the tests of resident voxel storage (Vulkan sparse residency) on a lavapipe that offers
-# it: Mesa 25 from Debian 12's backports, unpacked into the build cache beside the system's
-# Mesa 22.3 (which has no sparse residency) and chosen with VK_DRIVER_FILES for this run only.
+# Runs the tests of resident voxel storage (Vulkan sparse residency), and the bench smoke run
+# whose default storage it becomes, on a lavapipe that offers it: Mesa 25 from Debian 12's
+# backports, unpacked into the build cache beside the system's Mesa 22.3 (which has no sparse
+# residency) and chosen with VK_DRIVER_FILES for this run only.
 # Debian 12 only (elsewhere it says so and stops); the apt source is the system's own Debian
 # mirror with the backports suite. Usage: scripts/lavapipe-residency.sh [cargo test args...]
 set -euo pipefail
@@ -41,4 +42,4 @@ grep -i -e "llvmpipe" -e "residen" -e "sparse" <<<"$devices"
 # The tests skip themselves on a device without residency: make sure this one has it.
 grep -q '\[x\] sparseBinding + sparseResidencyImage3D' <<<"$devices" ||
     { echo "lavapipe-residency: the backports lavapipe offers no sparse residency" >&2; exit 1; }
-cargo test --no-fail-fast --test resident_storage "$@"
+cargo test --no-fail-fast --test resident_storage --test bench "$@"

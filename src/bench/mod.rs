@@ -41,8 +41,8 @@ pub struct BenchOptions {
     pub subdivisions: u32,
     pub out_dir: PathBuf,
     pub cache_dir: PathBuf,
-    /// Storage modes beside the default one, run with the default voxelizer (e.g. dense, to
-    /// chart memory and time against FLIP per mode).
+    /// Storage modes beside the default one, run with the default voxelizer where the device
+    /// offers them (e.g. dense, to chart memory and time against FLIP per mode).
     pub compare_storage: Vec<Storage>,
 }
 
@@ -227,11 +227,14 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         let ref_rgb = metrics::tonemap(&reference);
         references.push(info);
         let default_method = RenderOptions::default().method;
-        let stored = Storage::default();
+        // The default storage for every voxelizer; the others (those the device offers) with the
+        // default voxelizer.
+        let stored = Storage::default().resolve(ctx, false);
+        let offered = |s: Storage| s != Storage::Resident || crate::voxel::bricks::residency_offered(ctx);
         let configs: Vec<(VoxelizeMethod, Storage)> = methods
             .iter()
             .map(|&m| (m, stored))
-            .chain(opts.compare_storage.iter().filter(|&&s| s != stored).map(|&s| (default_method, s)))
+            .chain(opts.compare_storage.iter().filter(|&&s| s != stored && offered(s)).map(|&s| (default_method, s)))
             .collect();
         for &res in &opts.resolutions {
             for &(method, storage) in &configs {

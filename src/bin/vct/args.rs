@@ -89,8 +89,8 @@ pub struct BenchArgs {
     /// Voxel resolutions, e.g. 64,128,256.
     #[arg(long, value_delimiter = ',')]
     pub res: Option<Vec<u32>>,
-    /// Also run the default voxelizer with dense storage, and chart memory and frame time
-    /// against FLIP per storage mode (on|off).
+    /// Also run the default voxelizer with the other storage modes the device offers (dense, the
+    /// brick pool, residency), and chart memory and frame time against FLIP per mode (on|off).
     #[arg(long, value_enum, default_value = "on")]
     pub compare_storage: OnOff,
     /// Indirect light against the path tracer instead of the voxelizer sweep: FLIP, mean radiance

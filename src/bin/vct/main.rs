@@ -424,7 +424,8 @@ fn bench(args: BenchArgs) -> Result<()> {
         out_dir: out.clone(),
         cache_dir: out.parent().unwrap_or(Path::new(".")).join("cache"),
         compare_storage: if args.compare_storage == OnOff::On {
-            vec![vct::voxel::bricks::Storage::Dense]
+            use vct::voxel::bricks::Storage;
+            vec![Storage::Dense, Storage::Sparse, Storage::Resident]
         } else {
             vec![]
         },
