@@ -139,20 +139,26 @@ pub struct Image {
     pub bytes: u64,
 }
 
+/// Creates the image `desc` describes (one layer, one sample, optimal tiling), with `flags`.
+pub(super) fn create_raw(ctx: &Context, desc: &ImageDesc, flags: vk::ImageCreateFlags) -> Result<vk::Image> {
+    let info = vk::ImageCreateInfo::default()
+        .flags(flags)
+        .image_type(desc.ty)
+        .format(desc.format)
+        .extent(desc.extent)
+        .mip_levels(desc.mip_levels)
+        .array_layers(1)
+        .samples(vk::SampleCountFlags::TYPE_1)
+        .tiling(vk::ImageTiling::OPTIMAL)
+        .usage(desc.usage)
+        .sharing_mode(vk::SharingMode::EXCLUSIVE)
+        .initial_layout(vk::ImageLayout::UNDEFINED);
+    unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")
+}
+
 impl Image {
     pub fn new(ctx: &Arc<Context>, name: &str, desc: ImageDesc) -> Result<Self> {
-        let info = vk::ImageCreateInfo::default()
-            .image_type(desc.ty)
-            .format(desc.format)
-            .extent(desc.extent)
-            .mip_levels(desc.mip_levels)
-            .array_layers(1)
-            .samples(vk::SampleCountFlags::TYPE_1)
-            .tiling(vk::ImageTiling::OPTIMAL)
-            .usage(desc.usage)
-            .sharing_mode(vk::SharingMode::EXCLUSIVE)
-            .initial_layout(vk::ImageLayout::UNDEFINED);
-        let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
+        let raw = create_raw(ctx, &desc, vk::ImageCreateFlags::empty())?;
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
         let allocation = ctx
             .allocate(&AllocationCreateDesc {

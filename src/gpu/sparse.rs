@@ -14,7 +14,7 @@ use gpu_allocator::MemoryLocation;
 
 use super::image::{aspect_of, Image, ImageDesc, ImageView};
 use super::Context;
-use crate::error::{Error, Result, VkContext};
+use crate::error::{Error, Result};
 
 fn flags(shared: bool) -> vk::ImageCreateFlags {
     let f = vk::ImageCreateFlags::SPARSE_BINDING | vk::ImageCreateFlags::SPARSE_RESIDENCY;
@@ -53,7 +53,8 @@ pub fn block_shape(ctx: &Context, desc: &ImageDesc) -> Result<[u32; 3]> {
             device: ctx.info.name.clone(),
             feature: match desc.format {
                 vk::Format::R32_UINT => "sparse residency for R32_UINT 3D images",
-                _ => "sparse residency for R16G16B16A16_SFLOAT 3D images",
+                vk::Format::R16G16B16A16_SFLOAT => "sparse residency for R16G16B16A16_SFLOAT 3D images",
+                _ => "sparse residency for this 3D image format",
             },
             needed_by: "resident voxel storage (--storage resident)",
         }),
@@ -69,19 +70,7 @@ impl Image {
     pub fn resident(ctx: &Arc<Context>, name: &str, desc: ImageDesc, blocks: &[[u32; 3]]) -> Result<Self> {
         assert_eq!(desc.mip_levels, 1, "resident images have one level");
         let shared = !unbound_reads_zero(ctx);
-        let info = vk::ImageCreateInfo::default()
-            .flags(flags(shared))
-            .image_type(desc.ty)
-            .format(desc.format)
-            .extent(desc.extent)
-            .mip_levels(1)
-            .array_layers(1)
-            .samples(vk::SampleCountFlags::TYPE_1)
-            .tiling(vk::ImageTiling::OPTIMAL)
-            .usage(desc.usage)
-            .sharing_mode(vk::SharingMode::EXCLUSIVE)
-            .initial_layout(vk::ImageLayout::UNDEFINED);
-        let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
+        let raw = super::image::create_raw(ctx, &desc, flags(shared))?;
         let mut image = Image {
             ctx: ctx.clone(),
             raw,

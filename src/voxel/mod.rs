@@ -286,7 +286,16 @@ pub fn build(
             let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
             return Ok((volume, voxelizer));
         }
-        bricks::Storage::Resident => return build_resident(ctx, scene, scene_gpu, grid, method, request),
+        bricks::Storage::Resident if moving => {
+            return Err(crate::Error::param(
+                "storage",
+                "resident storage binds the blocks a census of the fixed grid finds: a volume following the camera needs --storage dense or sparse",
+            ))
+        }
+        bricks::Storage::Resident if bricks.is_some() => {
+            return Err(crate::Error::param("bricks", "--bricks sizes the sparse brick pool; resident storage has none"))
+        }
+        bricks::Storage::Resident => return build_resident(ctx, scene, scene_gpu, grid, method),
         _ => {}
     }
     let mut volume = sized(bricks.unwrap_or(0))?;
@@ -322,18 +331,8 @@ fn build_resident(
     scene_gpu: &SceneGpu,
     grid: VoxelGrid,
     method: VoxelizeMethod,
-    request: bricks::StorageRequest,
 ) -> Result<(VoxelVolume, Voxelizer)> {
     bricks::require_residency(ctx)?;
-    if request.moving {
-        return Err(crate::Error::param(
-            "storage",
-            "resident storage binds the blocks a census of the fixed grid finds: a volume following the camera needs --storage dense or sparse",
-        ));
-    }
-    if request.bricks.is_some() {
-        return Err(crate::Error::param("bricks", "--bricks sizes the sparse brick pool; resident storage has none"));
-    }
     let none = vec![0; bricks::brick_count(&grid).element_product() as usize];
     let mut volume = VoxelVolume::stored(ctx, grid, bricks::Bricks::resident(ctx, &grid, &none)?)?;
     let voxelizer = Voxelizer::new(ctx, scene, scene_gpu, &volume, method)?;
