@@ -278,11 +278,12 @@ macro_rules! both_backends {
     };
 }
 
-/// Draws the four charts into `dir`; returns the files written.
-pub fn draw_all(dir: &Path, all: &Results) -> Result<Vec<PathBuf>> {
+/// Draws the charts into `dir` (the tess/raster ratio beside `before`'s, where given); returns
+/// the files written.
+pub fn draw_all(dir: &Path, all: &Results, before: Option<&Results>) -> Result<Vec<PathBuf>> {
     ensure_font()?;
     // The voxelizer charts over the default storage; the storage charts over every mode.
-    let stored = all.default_storage.as_str();
+    let stored = all.stored();
     let r = &Results { rows: all.rows.iter().filter(|x| x.storage == stored).cloned().collect(), ..all.clone() };
     let charts: [(&str, Chart); 4] = [
         ("voxelize_time", both_backends!(voxelize_time, 900, 560)),
@@ -302,7 +303,60 @@ pub fn draw_all(dir: &Path, all: &Results) -> Result<Vec<PathBuf>> {
             files.extend(draw_named(dir, &g.name, &g)?);
         }
     }
+    let ratio = tess_ratio(all, before);
+    if !ratio.series.is_empty() {
+        files.extend(draw_named(dir, &ratio.name, &ratio)?);
+    }
     Ok(files)
+}
+
+/// Tessellated over rasterized (MSAA) voxelization time against the resolution, one curve per
+/// scene, and the same from `before`, an earlier run, where given (issue "hostile geometry":
+/// the ratio before and after patch balancing).
+pub fn tess_ratio(r: &Results, before: Option<&Results>) -> Regime {
+    let curves = |r: &Results, suffix: &str| -> Vec<Series> {
+        let stored = r.stored();
+        let of = |scene: &str, method: &str, n: u32| {
+            r.rows
+                .iter()
+                .find(|x| x.scene == scene && x.voxelizer == method && x.resolution == n && x.storage == stored)
+                .map(|x| x.voxelize_ms)
+        };
+        let mut scenes: Vec<&str> = r.rows.iter().map(|x| x.scene.as_str()).collect();
+        scenes.dedup();
+        scenes
+            .into_iter()
+            .map(|scene| {
+                let mut n: Vec<u32> = r.rows.iter().filter(|x| x.scene == scene).map(|x| x.resolution).collect();
+                n.sort();
+                n.dedup();
+                let points = n
+                    .into_iter()
+                    .filter_map(|n| Some((n as f64, of(scene, "tess", n)? / of(scene, "raster-msaa", n)?)))
+                    .collect();
+                Series { label: format!("{scene}{suffix}"), points }
+            })
+            .collect()
+    };
+    let mut series = curves(r, "");
+    if let Some(b) = before {
+        series.extend(curves(b, ", before"));
+    }
+    series.retain(|s| !s.points.is_empty());
+    let n = series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let (lo, hi) = n.fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)));
+    if hi > 0.0 {
+        series.push(Series { label: "the issue's target, 8×".into(), points: vec![(lo, 8.0), (hi, 8.0)] });
+    }
+    Regime {
+        name: "tess_over_raster".into(),
+        title: format!("Tessellated over rasterized (MSAA) voxelization time ({})", r.device),
+        x: "voxels along the longest axis".into(),
+        y: "tess ms / raster-msaa ms".into(),
+        log_x: true,
+        log_y: true,
+        series,
+    }
 }
 
 /// Memory and frame time against FLIP, one curve per scene and storage mode (the default

@@ -98,9 +98,17 @@ pub struct Results {
     pub references: Vec<ReferenceInfo>,
     pub rows: Vec<Row>,
     pub triangle_sweep: Vec<TriangleRow>,
-    /// The default storage on the device (`auto` resolved; runs before residency: sparse).
-    #[serde(default = "sparse_label")]
-    pub default_storage: String,
+    /// The default storage on the device (`auto` resolved; absent in runs before residency,
+    /// whose first rows ran the default: see [`Results::stored`]).
+    #[serde(default)]
+    pub default_storage: Option<String>,
+}
+
+impl Results {
+    /// The storage every voxelizer ran with (the other modes ran the default voxelizer only).
+    pub fn stored(&self) -> &str {
+        self.default_storage.as_deref().or(self.rows.first().map(|r| r.storage.as_str())).unwrap_or("sparse")
+    }
 }
 
 #[derive(Clone, Serialize, Deserialize)]
@@ -112,10 +120,6 @@ pub struct ReferenceInfo {
 
 fn dense_label() -> String {
     Storage::Dense.label().into()
-}
-
-fn sparse_label() -> String {
-    Storage::Sparse.label().into()
 }
 
 /// The voxelizers a device can run: tessellation, rasterized with MSAA, without, and
@@ -306,15 +310,16 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         reference_bounces: 1,
         references,
         rows,
-        default_storage: Storage::default().resolve(ctx, false).label().into(),
+        default_storage: Some(Storage::default().resolve(ctx, false).label().into()),
         triangle_sweep,
     })
 }
 
 pub const CSV_HEADER: &str = "scene,triangles,voxelizer,resolution,frames,voxelize_ms,shadow_ms,inject_ms,filter_ms,gbuffer_ms,shade_ms,tonemap_ms,total_ms,total_min_ms,total_max_ms,recall,precision,iou,flip,rmse,dims,memory_mib,cube_memory_mib,storage";
 
-/// Writes results.csv, results.json and the charts into `dir`.
-pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
+/// Writes results.csv, results.json, summary.md and the charts into `dir`; `before`, an
+/// earlier run, is drawn beside this one where a chart compares runs.
+pub fn write(dir: &Path, results: &Results, before: Option<&Results>) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
     let mut csv = String::from(CSV_HEADER);
     csv.push('\n');
@@ -358,7 +363,7 @@ pub fn write(dir: &Path, results: &Results) -> Result<Vec<PathBuf>> {
         serde_json::to_string_pretty(results).map_err(|e| Error::input(dir.join("results.json"), e.to_string()))?;
     files.push(write("results.json", &json)?);
     files.push(write("summary.md", &summary(results))?);
-    files.extend(charts::draw_all(dir, results)?);
+    files.extend(charts::draw_all(dir, results, before)?);
     Ok(files)
 }
 
@@ -406,7 +411,7 @@ pub fn summary(r: &Results) -> String {
         ));
     }
     s.push_str("\nTess/raster (MSAA) voxelization time ratio:\n\n| scene | N | tess ms | raster ms | ratio |\n|---|---|---|---|---|\n");
-    let stored = r.default_storage.as_str();
+    let stored = r.stored();
     for t in r.rows.iter().filter(|x| x.voxelizer == "tess" && x.storage == stored) {
         if let Some(m) = r.rows.iter().find(|x| {
             x.voxelizer == "raster-msaa" && x.storage == stored && x.scene == t.scene && x.resolution == t.resolution

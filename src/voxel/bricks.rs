@@ -28,8 +28,9 @@ use crate::gpu::{self, scope, Buffer, Context, Feature, Image, ImageDesc};
 /// Where the per-voxel textures live.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub enum Storage {
-    /// Sparse for a grid fitted to the scene; dense for a volume that moves with the camera,
-    /// whose occupancy no census made at its first place bounds.
+    /// For a grid fitted to the scene, resident where the device offers residency, else the
+    /// pool; dense for a volume that moves with the camera, whose occupancy no census made at
+    /// its first place bounds.
     #[default]
     Auto,
     /// Every texture over the whole grid.

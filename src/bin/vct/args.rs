@@ -69,6 +69,10 @@ pub struct BenchArgs {
     /// Redraw the charts and summary of an earlier run from DIR/results.json.
     #[arg(long, value_name = "DIR")]
     pub replot: Option<PathBuf>,
+    /// An earlier run's results.json, drawn beside this run's in the tess/raster ratio chart
+    /// ("before").
+    #[arg(long, value_name = "RESULTS.json")]
+    pub baseline: Option<PathBuf>,
     /// Measure where each method fails (tessellation limit, raster cracks, small triangles,
     /// light leaking, temporal flicker, self-illumination) instead of the speed/accuracy sweep.
     #[arg(long)]

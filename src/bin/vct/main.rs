@@ -326,9 +326,10 @@ fn compare(args: CompareArgs) -> Result<()> {
 }
 
 fn bench(args: BenchArgs) -> Result<()> {
+    let before = args.baseline.as_deref().map(vct::bench::read_results).transpose()?;
     if let Some(dir) = &args.replot {
         let results = vct::bench::read_results(&dir.join("results.json"))?;
-        for f in vct::bench::write(dir, &results)? {
+        for f in vct::bench::write(dir, &results, before.as_ref())? {
             println!("wrote {}", f.display());
         }
         return Ok(());
@@ -403,11 +404,15 @@ fn bench(args: BenchArgs) -> Result<()> {
         let bar = indicatif::ProgressBar::new_spinner();
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
         let methods = vct::bench::methods(&ctx);
-        let res = if args.quick { 64 } else { 128 };
-        let hostile = vct::bench::hostile::run(&ctx, &methods, res, &|m| bar.set_message(m.to_string()))
-            .context("voxelizing the hostile-geometry set")?;
+        let resolutions = args.res.clone().unwrap_or(if args.quick { vec![64] } else { vec![64, 128, 256] });
+        let mut hostile = Vec::new();
+        for &res in &resolutions {
+            let rows = vct::bench::hostile::run(&ctx, &methods, res, &|m| bar.set_message(format!("{m}, {res}³")))
+                .context("voxelizing the hostile-geometry set")?;
+            hostile.extend(rows);
+        }
         bar.finish_and_clear();
-        println!("Hostile geometry (assets/hostile/), {res}³:\n{}", vct::bench::hostile::table(&hostile));
+        println!("Hostile geometry (assets/hostile/):\n{}", vct::bench::hostile::table(&hostile));
         let json = out.join("hostile.json");
         std::fs::write(&json, serde_json::to_string_pretty(&hostile)?)
             .with_context(|| format!("writing {}", json.display()))?;
@@ -448,7 +453,7 @@ fn bench(args: BenchArgs) -> Result<()> {
             r.scene, r.voxelizer, r.resolution, r.voxelize_ms, r.total_ms, r.recall, r.precision, r.iou, r.flip
         );
     }
-    for f in vct::bench::write(&out, &results)? {
+    for f in vct::bench::write(&out, &results, before.as_ref())? {
         println!("wrote {}", f.display());
     }
     println!("bench took {:.0} s", start.elapsed().as_secs_f64());
