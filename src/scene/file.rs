@@ -6,7 +6,8 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
-    /// OBJ path, relative to the scene file.
+    /// The mesh: an OBJ or glTF (.gltf, .glb) path, relative to the scene file. A glTF's
+    /// camera and lights serve where this file gives none.
     pub mesh: String,
     pub camera: Option<CameraFile>,
     #[serde(default, rename = "light")]

@@ -1,10 +1,12 @@
 //! Scenes: a mesh with materials and textures, a camera, lights and settings, loaded from a
-//! TOML scene file or a bare OBJ (framed automatically, one default light). Units are
+//! TOML scene file, a bare OBJ (framed automatically, one default light) or a glTF 2.0 file
+//! (its own camera and lights where it has them). Units are
 //! physical: metres, W/sr for spot intensity, W/m² for directional irradiance; MTL `Kd` is
 //! linear albedo. The Cornell box of `assets/cornell-spot/` is embedded as the default.
 
 pub mod cones;
 pub mod file;
+pub mod gltf;
 pub mod gpu;
 pub mod obj;
 
@@ -249,14 +251,20 @@ pub fn load_from_memory(files: &[(&str, &[u8])], entry: &str) -> Result<Scene> {
 }
 
 /// The fuzz target's body: `data` split at "\n----\n" into scene.toml, mesh.obj and mesh.mtl,
-/// loaded both as a scene file and as a bare OBJ. Must return, never panic or hang.
+/// loaded both as a scene file and as a bare OBJ, and `data` whole as a binary glTF (.glb) and
+/// a glTF's JSON. Must return, never panic or hang.
 pub fn fuzz_scene_input(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let mut parts = text.splitn(3, "\n----\n");
     let (toml, obj, mtl) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""), parts.next().unwrap_or(""));
-    let files: [(&str, &[u8]); 3] =
-        [("scene.toml", toml.as_bytes()), ("mesh.obj", obj.as_bytes()), ("mesh.mtl", mtl.as_bytes())];
-    for entry in ["scene.toml", "mesh.obj"] {
+    let files: [(&str, &[u8]); 5] = [
+        ("scene.toml", toml.as_bytes()),
+        ("mesh.obj", obj.as_bytes()),
+        ("mesh.mtl", mtl.as_bytes()),
+        ("scene.glb", data),
+        ("scene.gltf", data),
+    ];
+    for entry in ["scene.toml", "mesh.obj", "scene.glb", "scene.gltf"] {
         if let Ok(scene) = load_from_memory(&files, entry) {
             // What loads must be usable: finite bounds or empty, indices in range.
             let n = scene.mesh.vertices.len() as u32;
@@ -323,11 +331,14 @@ impl Scene {
     /// As [`Scene::load`], reading every file (scene, OBJ, MTL, textures) through `read`.
     pub fn load_with(path: &Path, read: obj::ReadFn) -> Result<Scene> {
         let ext = path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
-        match ext.as_deref() {
+        let scene = match ext.as_deref() {
             Some("obj") => Self::from_obj(path, read),
+            Some("gltf" | "glb") => Self::from_gltf(path, read),
             Some("toml") => Self::from_toml(path, read),
-            _ => Err(Error::input(path, "expected a scene file (.toml) or a mesh (.obj)")),
-        }
+            _ => Err(Error::input(path, "expected a scene file (.toml), a mesh (.obj) or a glTF file (.gltf, .glb)")),
+        }?;
+        check_values(&scene)?;
+        Ok(scene)
     }
 
     fn from_toml(path: &Path, read: obj::ReadFn) -> Result<Scene> {
@@ -337,7 +348,8 @@ impl Scene {
             toml::from_str(&text).map_err(|e| Error::input(path, format!("invalid scene file: {e}")))?;
         let mesh_path = path.parent().unwrap_or(Path::new("")).join(&file.mesh);
         let mut warnings = Vec::new();
-        let (mesh, materials, textures) = obj::load_obj(&mesh_path, read, &mut warnings)?;
+        let loaded = load_mesh(&mesh_path, read, &mut warnings)?;
+        let (mesh, materials, textures) = (loaded.mesh, loaded.materials, loaded.textures);
         let camera = match &file.camera {
             Some(c) => {
                 check_finite(path, "camera.eye", &c.eye)?;
@@ -350,8 +362,18 @@ impl Scene {
                     ));
                 }
                 check_image_size(c.width, c.height).map_err(|e| Error::input(path, format!("camera.{e}")))?;
-                if Vec3::from(c.eye).distance_squared(Vec3::from(c.target)) < 1e-12 {
+                let view = Vec3::from(c.target) - Vec3::from(c.eye);
+                if view.length_squared() < 1e-12 {
                     return Err(Error::input(path, "camera.eye and camera.target must differ"));
+                }
+                if view.normalize().cross(up).length() < 1e-4 {
+                    return Err(Error::input(
+                        path,
+                        format!(
+                            "camera.up {:?} is parallel to the view direction (eye to target): no image orientation",
+                            c.up
+                        ),
+                    ));
                 }
                 Camera {
                     eye: c.eye.into(),
@@ -362,9 +384,10 @@ impl Scene {
                     height: c.height,
                 }
             }
-            None => frame_bounds(&mesh.bounds),
+            None => loaded.camera.unwrap_or_else(|| frame_bounds(&mesh.bounds)),
         };
         let lights = match file.lights.as_slice() {
+            [] if !loaded.lights.is_empty() => one_light(&mesh_path, loaded.lights, &mut warnings),
             [] => default_lights(&mesh, &materials),
             [l] => vec![convert_light(path, l)?],
             more => {
@@ -387,6 +410,28 @@ impl Scene {
         let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
         let lights = default_lights(&mesh, &materials);
         Ok(Scene { source: path.to_path_buf(), mesh, materials, textures, camera, lights, settings, warnings })
+    }
+
+    fn from_gltf(path: &Path, read: obj::ReadFn) -> Result<Scene> {
+        let mut warnings = Vec::new();
+        let g = gltf::load_gltf(path, read, &mut warnings)?;
+        let camera = g.camera.unwrap_or_else(|| frame_bounds(&g.mesh.bounds));
+        let lights = if g.lights.is_empty() {
+            default_lights(&g.mesh, &g.materials)
+        } else {
+            one_light(path, g.lights, &mut warnings)
+        };
+        let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
+        Ok(Scene {
+            source: path.to_path_buf(),
+            mesh: g.mesh,
+            materials: g.materials,
+            textures: g.textures,
+            camera,
+            lights,
+            settings,
+            warnings,
+        })
     }
 
     /// A scene made in code: `triangles` with one flat material each (by index into
@@ -433,6 +478,76 @@ impl Scene {
         self.camera.height = h;
         Ok(())
     }
+}
+
+/// A mesh file's content: an OBJ's, or a glTF's with its camera and lights.
+struct LoadedMesh {
+    mesh: Mesh,
+    materials: Vec<Material>,
+    textures: Vec<Texture>,
+    camera: Option<Camera>,
+    lights: Vec<Light>,
+}
+
+/// Loads the mesh a scene file names: OBJ, or glTF (`.gltf`, `.glb`).
+fn load_mesh(path: &Path, read: obj::ReadFn, warnings: &mut Vec<String>) -> Result<LoadedMesh> {
+    if gltf::is_gltf(path) {
+        let g = gltf::load_gltf(path, read, warnings)?;
+        return Ok(LoadedMesh {
+            mesh: g.mesh,
+            materials: g.materials,
+            textures: g.textures,
+            camera: g.camera,
+            lights: g.lights,
+        });
+    }
+    let (mesh, materials, textures) = obj::load_obj(path, read, warnings)?;
+    Ok(LoadedMesh { mesh, materials, textures, camera: None, lights: Vec::new() })
+}
+
+/// The first of a file's lights (vct renders one shadowed light), with a warning naming the rest.
+fn one_light(path: &Path, mut lights: Vec<Light>, warnings: &mut Vec<String>) -> Vec<Light> {
+    if lights.len() > 1 {
+        warnings.push(format!(
+            "{}: {} lights; vct renders one shadowed light, the first (the other {} are not rendered)",
+            path.display(),
+            lights.len(),
+            lights.len() - 1
+        ));
+        lights.truncate(1);
+    }
+    lights
+}
+
+/// The largest emitted radiance the GPU stores: RGB9E5's largest value (the voxels' emission;
+/// the radiance volume's half floats reach 65504).
+pub const MAX_EMISSION: f32 = 65408.0;
+
+/// Values a file may legally carry that make no picture: an error naming the file and the value.
+fn check_values(scene: &Scene) -> Result<()> {
+    let path = &scene.source;
+    let b = &scene.mesh.bounds;
+    if !(b.is_empty() || b.size().length().is_finite()) {
+        return Err(Error::input(
+            path,
+            format!(
+                "the scene's extent overflows single precision (coordinates from {} to {}): scale the model",
+                b.min, b.max
+            ),
+        ));
+    }
+    for m in &scene.materials {
+        if m.emissive.max_element() > MAX_EMISSION {
+            return Err(Error::input(
+                path,
+                format!(
+                    "material '{}' emits {} W/(m²·sr), beyond the {MAX_EMISSION} the GPU's half-float radiance holds: scale the emission (and the exposure)",
+                    m.name, m.emissive
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn check_settings(path: &Path, s: &Settings) -> Result<()> {

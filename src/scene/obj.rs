@@ -22,6 +22,16 @@ fn parse_floats(s: &str) -> Option<Vec3> {
     }
 }
 
+fn fmt_colour(v: Vec3) -> String {
+    format!("{} {} {}", v.x, v.y, v.z)
+}
+
+/// Decodes an encoded image (PNG, JPEG, ...) into an RGBA8 texture; `path` names it.
+pub(super) fn decode_texture(path: &Path, bytes: &[u8], srgb: bool) -> std::result::Result<Texture, String> {
+    let rgba = image::load_from_memory(bytes).map_err(|e| e.to_string())?.to_rgba8();
+    Ok(Texture { path: path.to_path_buf(), width: rgba.width(), height: rgba.height(), rgba: rgba.into_raw(), srgb })
+}
+
 fn load_texture(
     path: &Path,
     srgb: bool,
@@ -33,19 +43,10 @@ fn load_texture(
     if let Some(&i) = cache.get(&(path.to_path_buf(), srgb)) {
         return Some(i);
     }
-    let decoded = read(path)
-        .map_err(|e| e.to_string())
-        .and_then(|bytes| image::load_from_memory(&bytes).map_err(|e| e.to_string()));
+    let decoded = read(path).map_err(|e| e.to_string()).and_then(|bytes| decode_texture(path, &bytes, srgb));
     match decoded {
-        Ok(img) => {
-            let rgba = img.to_rgba8();
-            textures.push(Texture {
-                path: path.to_path_buf(),
-                width: rgba.width(),
-                height: rgba.height(),
-                rgba: rgba.into_raw(),
-                srgb,
-            });
+        Ok(texture) => {
+            textures.push(texture);
             cache.insert((path.to_path_buf(), srgb), textures.len() - 1);
             Some(textures.len() - 1)
         }
@@ -58,6 +59,7 @@ fn load_texture(
 
 fn convert_material(
     m: &tobj::Material,
+    obj: &Path,
     dir: &Path,
     read: ReadFn,
     textures: &mut Vec<Texture>,
@@ -83,17 +85,26 @@ fn convert_material(
         m.diffuse_texture.as_ref().and_then(|t| load_texture(&tex_path(t), true, read, textures, cache, warnings));
     let normal_texture =
         m.normal_texture.as_ref().and_then(|t| load_texture(&tex_path(t), false, read, textures, cache, warnings));
-    let sanitize = |v: Vec3| if v.is_finite() { v.max(Vec3::ZERO) } else { Vec3::ZERO };
-    Material {
-        name: m.name.clone(),
-        albedo: sanitize(albedo).min(Vec3::ONE),
-        emissive: sanitize(emissive),
-        specular: sanitize(specular).min(Vec3::ONE),
-        roughness,
-        metallic,
-        albedo_texture,
-        normal_texture,
-    }
+    // A colour that makes no sense (NaN, infinite, negative, or a reflectance above 1) is
+    // replaced, and the warning names the file, the material and the value: never a silent
+    // black or dim surface.
+    let mut sanitize = |key: &str, v: Vec3, most: f32| {
+        let fixed = if v.is_finite() { v.clamp(Vec3::ZERO, Vec3::splat(most)) } else { Vec3::ZERO };
+        if fixed != v {
+            warnings.push(format!(
+                "{} (its MTL): material '{}': {key} {} is not a usable colour (finite, non-negative{}); using {}",
+                obj.display(),
+                m.name,
+                fmt_colour(v),
+                if most.is_finite() { ", at most 1" } else { "" },
+                fmt_colour(fixed)
+            ));
+        }
+        fixed
+    };
+    let (albedo, emissive, specular) =
+        (sanitize("Kd", albedo, 1.0), sanitize("Ke", emissive, f32::INFINITY), sanitize("Ks", specular, 1.0));
+    Material { name: m.name.clone(), albedo, emissive, specular, roughness, metallic, albedo_texture, normal_texture }
 }
 
 /// Rewrites colour lines tobj cannot take: `Kd r` means `Kd r r r` (the MTL format), and a line
@@ -190,8 +201,10 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
 
     let mut textures = Vec::new();
     let mut cache = HashMap::new();
-    let mut mats: Vec<Material> =
-        tobj_materials.iter().map(|m| convert_material(m, &dir, read, &mut textures, &mut cache, warnings)).collect();
+    let mut mats: Vec<Material> = tobj_materials
+        .iter()
+        .map(|m| convert_material(m, path, &dir, read, &mut textures, &mut cache, warnings))
+        .collect();
     let default_material = mats.len();
     mats.push(Material::default_grey());
 
@@ -268,7 +281,7 @@ pub fn load_obj(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result
 }
 
 /// Area-weighted vertex normals, for vertices whose normal the file left out (zero).
-fn compute_normals(vertices: &mut [Vertex], indices: &[u32]) {
+pub(super) fn compute_normals(vertices: &mut [Vertex], indices: &[u32]) {
     let missing: Vec<bool> = vertices.iter().map(|v| Vec3::from(v.normal) == Vec3::ZERO).collect();
     let mut acc = vec![Vec3::ZERO; vertices.len()];
     for t in indices.chunks_exact(3) {
@@ -286,7 +299,7 @@ fn compute_normals(vertices: &mut [Vertex], indices: &[u32]) {
 }
 
 /// Per-vertex tangents from UV derivatives (Lengyel's method), handedness in `w`.
-fn compute_tangents(vertices: &mut [Vertex], indices: &[u32]) {
+pub(super) fn compute_tangents(vertices: &mut [Vertex], indices: &[u32]) {
     let mut tan = vec![Vec3::ZERO; vertices.len()];
     let mut bit = vec![Vec3::ZERO; vertices.len()];
     for t in indices.chunks_exact(3) {

@@ -40,7 +40,7 @@ pub enum Command {
 
 #[derive(Args)]
 pub struct ReferenceArgs {
-    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    /// Scene file (.toml), mesh (.obj) or glTF 2.0 (.gltf, .glb); default: the embedded Cornell box.
     pub scene: Option<PathBuf>,
     /// Indirect bounces: 0 direct light only, 1 what cone tracing approximates, more for full GI.
     #[arg(long, default_value_t = 1)]
@@ -61,7 +61,7 @@ pub struct ReferenceArgs {
 
 #[derive(Args)]
 pub struct BenchArgs {
-    /// Extra scenes (.toml or .obj) besides the embedded Cornell box.
+    /// Extra scenes (.toml, .obj, .gltf or .glb) besides the embedded Cornell box.
     pub scenes: Vec<PathBuf>,
     /// A short run for CI: Cornell at 32³ and 64³, 128×128, few frames, a 16-spp reference.
     #[arg(long)]
@@ -136,7 +136,7 @@ pub struct CompareArgs {
 /// The scene, image size and voxelization method (shared by `render` and `view`).
 #[derive(Args)]
 pub struct SceneArgs {
-    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    /// Scene file (.toml), mesh (.obj) or glTF 2.0 (.gltf, .glb); default: the embedded Cornell box.
     pub scene: Option<PathBuf>,
     #[arg(long)]
     pub width: Option<u32>,
@@ -444,7 +444,7 @@ impl MethodArgs {
 
 #[derive(Args)]
 pub struct VoxelizeArgs {
-    /// Scene file (.toml) or mesh (.obj); default: the embedded Cornell box.
+    /// Scene file (.toml), mesh (.obj) or glTF 2.0 (.gltf, .glb); default: the embedded Cornell box.
     pub scene: Option<PathBuf>,
     #[command(flatten)]
     pub method: MethodArgs,
