@@ -84,6 +84,12 @@
 // Narrowest specular cone (full aperture, radians): 0.1 pi roughness, never below this.
 #define MIN_SPECULAR_APERTURE 0.02
 // Debug views (FrameUniforms.view.x).
+// The viewer's on-screen overlay (post/overlay.comp): a block of text cells, each an 8x8 glyph
+// times the overlay's scale, this far from the window's corner (pixels).
+#define OVERLAY_COLUMNS 100
+#define OVERLAY_ROWS 40
+#define OVERLAY_MARGIN 6
+
 #define VIEW_FULL 0
 #define VIEW_DIRECT 1
 #define VIEW_INDIRECT 2

@@ -8,6 +8,7 @@ pub mod frame;
 pub mod inject;
 pub mod memory;
 pub mod occupancy;
+pub mod overlay;
 pub mod prepass;
 pub mod radiance;
 pub mod shade;

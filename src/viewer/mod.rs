@@ -18,6 +18,7 @@ use winit::window::{Window, WindowId};
 
 use crate::error::{Error, Result};
 use crate::gpu::{self, Context, ContextOptions, FrameOutcome, Swapchain, Timing};
+use crate::render::overlay::OverlayPass;
 use crate::render::{RenderOptions, Renderer, View};
 use crate::scene::Scene;
 use crate::voxel::{Coverage, VoxelizeMethod};
@@ -35,8 +36,9 @@ vct viewer keys:
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
   T              temporal filtering on / off
+  I              on-screen overlay on / off (never in screenshots)
   F12            screenshot (vct-screenshot-N.png)
-  H or F1        this help          Esc  quit";
+  H or F1        this help (also in the overlay)          Esc  quit";
 
 pub struct ViewerOptions {
     pub scene: Scene,
@@ -53,6 +55,8 @@ pub struct ViewerOptions {
     /// Soak test: move camera and light every frame, switch voxelizer every 60 frames and
     /// resolution every 90, and compare memory at frames 180 and 540, 900, ... (same settings).
     pub soak: bool,
+    /// Draw the on-screen overlay (FPS, pass times, settings, memory; the keys on H).
+    pub overlay: bool,
 }
 
 /// What a run of the viewer did.
@@ -97,6 +101,11 @@ const VIEWS: [View; 11] = [
 /// Live state once the window exists. Fields drop in order: GPU objects before the window.
 struct Running {
     renderer: Renderer,
+    /// Made for the renderer's current output image; dropped whenever that is made anew.
+    overlay: Option<OverlayPass>,
+    show_overlay: bool,
+    show_keys: bool,
+    fps: f32,
     swapchain: Swapchain,
     ctx: Arc<Context>,
     window: Arc<Window>,
@@ -126,6 +135,56 @@ fn key_axis(code: KeyCode, plus: KeyCode, minus: KeyCode, pressed: bool, axis: &
     } else if code == minus {
         *axis = if pressed { -1.0 } else { axis.max(0.0) };
     }
+}
+
+/// The overlay's text: FPS and size; voxelizer, grid and storage; view, GI, temporal filter,
+/// bounces and filter; voxel memory; each pass's GPU time; the key map on H.
+fn overlay_lines(r: &Running) -> Vec<String> {
+    let renderer = &r.renderer;
+    let (o, gi) = (&renderer.options, &renderer.scene.settings.gi);
+    let on = |b: bool| if b { "on" } else { "off" };
+    let grid = &renderer.voxels.grid;
+    let memory = renderer.memory();
+    let mut lines = vec![
+        format!("vct  {:.1} fps  {}x{}", r.fps, renderer.targets.width, renderer.targets.height),
+        format!(
+            "voxelizer {}  grid {}x{}x{}  storage {}",
+            o.method.label(),
+            grid.dims.x,
+            grid.dims.y,
+            grid.dims.z,
+            renderer.voxels.bricks.storage.label()
+        ),
+        format!(
+            "view {}  GI {}  temporal {}  bounces {}  filter {}",
+            format!("{:?}", o.view).to_lowercase(),
+            on(o.gi),
+            on(gi.temporal < 1.0),
+            gi.bounces,
+            format!("{:?}", gi.filter).to_lowercase()
+        ),
+        format!(
+            "voxel memory {:.1} MiB ({:.0}% of the bounding cube's)",
+            memory.bytes as f64 / (1 << 20) as f64,
+            100.0 * memory.bytes as f64 / memory.cube_bytes.max(1) as f64
+        ),
+    ];
+    let mut line = String::from("GPU ms:");
+    for t in &r.last_timings {
+        let item = format!("  {} {:.1}", t.pass, t.ms);
+        if line.len() + item.len() > 60 {
+            lines.push(std::mem::replace(&mut line, "       ".into()));
+        }
+        line.push_str(&item);
+    }
+    lines.push(line);
+    if r.show_keys {
+        lines.push(String::new());
+        lines.extend(HELP.lines().map(str::to_owned));
+    } else {
+        lines.push("H: keys   I: overlay off".into());
+    }
+    lines
 }
 
 impl App {
@@ -165,6 +224,10 @@ impl App {
         self.running = Some(Running {
             gpu_bytes_start: ctx.allocated_bytes(),
             renderer,
+            overlay: None,
+            show_overlay: self.options.overlay,
+            show_keys: false,
+            fps: 0.0,
             swapchain,
             ctx,
             window,
@@ -215,6 +278,7 @@ impl App {
     /// Rebuilds the renderer with new options (voxelizer or resolution), keeping camera and light.
     fn rebuild(r: &mut Running, options: RenderOptions) -> Result<()> {
         r.ctx.wait_idle()?;
+        r.overlay = None;
         let scene = r.renderer.scene.clone();
         r.renderer = Renderer::new(&r.ctx, scene, options)?;
         for n in &r.renderer.notes {
@@ -240,7 +304,11 @@ impl App {
         let mut options = r.renderer.options;
         match code {
             KeyCode::Escape => event_loop.exit(),
-            KeyCode::KeyH | KeyCode::F1 => println!("{HELP}"),
+            KeyCode::KeyH | KeyCode::F1 => {
+                println!("{HELP}");
+                r.show_keys = !r.show_keys;
+            }
+            KeyCode::KeyI => r.show_overlay = !r.show_overlay,
             KeyCode::KeyO => {
                 r.camera.toggle_mode(&r.renderer.scene.camera);
                 println!("camera: {}", if r.camera.mode == Mode::Fly { "fly" } else { "orbit" });
@@ -336,6 +404,7 @@ impl App {
         }
         if (size.width, size.height) != (r.renderer.targets.width, r.renderer.targets.height) {
             r.swapchain.recreate(size.width, size.height)?;
+            r.overlay = None;
             r.renderer.resize(size.width, size.height)?;
         }
         let now = Instant::now();
@@ -362,6 +431,15 @@ impl App {
                 swing_light(light, yaw, pitch);
             }
         }
+        if r.show_overlay {
+            if r.overlay.is_none() {
+                r.overlay = Some(OverlayPass::new(&r.ctx, &r.renderer.targets.ldr)?);
+            }
+            if let Some(o) = &r.overlay {
+                o.set_text(&overlay_lines(r));
+            }
+        }
+        let overlay = r.overlay.as_ref().filter(|_| r.show_overlay);
         let (renderer, ctx) = (&r.renderer, &r.ctx);
         let mut timings = Ok(Vec::new());
         let mut bricks = Ok(());
@@ -371,7 +449,13 @@ impl App {
             bricks = renderer.voxels.bricks.check();
             renderer.update_uniforms();
             renderer.record(cmd);
-            gpu::blit_to_present(ctx, cmd, &renderer.targets.ldr, image, extent);
+            match overlay {
+                Some(o) => {
+                    o.record(cmd);
+                    gpu::blit_to_present(ctx, cmd, &o.composite, image, extent);
+                }
+                None => gpu::blit_to_present(ctx, cmd, &renderer.targets.ldr, image, extent),
+            }
         })?;
         r.renderer.frame_recorded();
         if let Err(e) = bricks {
@@ -402,9 +486,10 @@ impl App {
         let since = (now - r.title_at).as_secs_f32();
         if since >= 0.5 {
             let passes: Vec<String> = r.last_timings.iter().map(|t| format!("{} {:.1}", t.pass, t.ms)).collect();
+            r.fps = r.title_frames as f32 / since;
             r.window.set_title(&format!(
                 "vct — {:.1} fps — {} {}³ — GPU ms: {}",
-                r.title_frames as f32 / since,
+                r.fps,
                 r.renderer.options.method.label(),
                 r.renderer.voxels.grid.longest(),
                 passes.join(", ")

@@ -244,6 +244,10 @@ pub struct ViewArgs {
     /// compare GPU and host memory at frame 180 and 540 (use --frames 541 or more).
     #[arg(long)]
     pub soak: bool,
+    /// The on-screen overlay: FPS, per-pass GPU time, settings, voxel memory, the keys on H
+    /// (key I toggles it; screenshots never contain it).
+    #[arg(long, value_enum, default_value = "on")]
+    pub overlay: OnOff,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }

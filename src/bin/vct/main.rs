@@ -224,6 +224,7 @@ fn view(args: ViewArgs) -> Result<()> {
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,
+        overlay: args.overlay == OnOff::On,
         validation: opts.validation,
         device: opts.device,
         frames: args.frames,
