@@ -29,7 +29,7 @@ fn overlay_draws_the_fonts_glyphs_over_a_frame_it_leaves_alone() {
     let under = gpu::read_image(&ctx, &frame, vk::ImageLayout::GENERAL, 0).unwrap();
     common::assert_clean(&ctx);
     assert!(under.iter().all(|&v| v == 0), "the frame was written");
-    let m = vct::config::OVERLAY_MARGIN as u32;
+    let m = vct::config::OVERLAY_MARGIN;
     let lines = ["Ab", "fps 7"];
     for y in 0..h {
         for x in 0..w {
