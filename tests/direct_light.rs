@@ -134,3 +134,64 @@ fn rendering_is_deterministic() {
     drop(renderer);
     common::assert_clean(&ctx);
 }
+
+/// A point light (cube shadow map, six faces) in the Cornell box: direct light on the floor, the
+/// ceiling, three walls (five different faces of the cube) against Kd/π · I · cos / d², and a
+/// floor point the tall box hides from it in shadow.
+#[test]
+fn point_light_matches_analytic_values_on_every_face() {
+    let ctx = common::context();
+    let mut scene = Scene::embedded_default().unwrap();
+    let (position, intensity) = (Vec3::new(0.5, 3.5, 0.5), Vec3::splat(30.0));
+    scene.lights = vec![Light::Point { position, intensity }];
+    let renderer = Renderer::new(&ctx, scene.clone(), direct_only()).unwrap();
+    renderer.render().unwrap();
+    let frame = renderer.read_frame().unwrap();
+    drop(renderer);
+    common::assert_clean(&ctx);
+    let sees_light = |p: Vec3| {
+        let d = position - p;
+        common::raycast(&scene, p, d.normalize(), d.length() - 1e-3).is_none()
+    };
+    let white = Vec3::splat(0.73);
+    let points = [
+        (Vec3::new(-2.0, 0.0, 2.0), Vec3::Y, white),
+        (Vec3::new(-1.5, 5.5, 1.5), -Vec3::Y, white),
+        (Vec3::new(-2.75, 2.5, 1.5), Vec3::X, Vec3::new(0.65, 0.05, 0.05)),
+        (Vec3::new(2.75, 3.0, 1.0), -Vec3::X, Vec3::new(0.12, 0.45, 0.15)),
+        (Vec3::new(0.0, 4.0, -2.75), Vec3::Z, white),
+    ];
+    for (p, n, albedo) in points {
+        let (x, y) = common::pixel_of(&scene, p);
+        let (o, d) = scene.camera.ray(x as f32, y as f32);
+        let (t, _) = common::raycast(&scene, o, d, 1e9).expect("pixel sees the scene");
+        let q = o + d * t;
+        assert!((q - p).length() < 0.1, "pixel ({x},{y}) sees {q}, not {p}");
+        assert!(sees_light(q), "{q} should see the light");
+        let to = position - q;
+        let expected = albedo / std::f32::consts::PI * intensity * n.dot(to.normalize()).max(0.0) / to.length_squared();
+        let got = common::hdr(&frame, x, y);
+        let err = (got - expected).length() / expected.length();
+        println!("{q}: GPU {got}, analytic {expected}, rel. error {err:.4}");
+        assert!(err < 0.03, "at {q} (pixel {x},{y}): GPU {got}, analytic {expected}, rel. error {err:.4}");
+    }
+    // Behind the tall box, seen from the light: dark.
+    let hidden = (0..frame.height)
+        .flat_map(|y| (0..frame.width).map(move |x| (x, y)))
+        .filter_map(|(x, y)| {
+            let (o, d) = scene.camera.ray(x as f32, y as f32);
+            let (t, tri) = common::raycast(&scene, o, d, 1e9)?;
+            let [a, b, c] = scene.mesh.triangle(tri);
+            let q = o + d * t;
+            let hidden = (b - a).cross(c - a).normalize().y.abs() > 0.99
+                && q.y.abs() < 1e-3
+                && [Vec3::ZERO, Vec3::X * 0.1, -Vec3::X * 0.1, Vec3::Z * 0.1, -Vec3::Z * 0.1]
+                    .iter()
+                    .all(|&o| !sees_light(q + o));
+            hidden.then(|| common::hdr(&frame, x, y).length())
+        })
+        .collect::<Vec<_>>();
+    assert!(hidden.len() > 20, "{} hidden floor pixels", hidden.len());
+    let brightest = hidden.iter().cloned().fold(0.0, f32::max);
+    assert!(brightest < 0.01, "a floor pixel hidden from the point light has radiance {brightest}");
+}

@@ -146,7 +146,7 @@ fn malformed_gltf_is_an_error_naming_the_file() {
 }
 
 #[test]
-fn unsupported_gltf_features_are_named_in_warnings() {
+fn unsupported_gltf_features_are_named_in_warnings_and_point_lights_load() {
     let d = temp_dir("unsupported");
     std::fs::copy(BIN, d.join("cornell-spot.bin")).unwrap();
     let text = std::fs::read_to_string(GLTF)
@@ -158,7 +158,14 @@ fn unsupported_gltf_features_are_named_in_warnings() {
     let s = Scene::load(&p).unwrap();
     let all = s.warnings.join("\n");
     assert!(all.contains("KHR_materials_clearcoat") && all.contains("point.gltf"), "{all}");
-    assert!(all.contains("point lights"), "{all}");
+    // The spot made a point light: 68,300 cd is 100 W/sr at its node.
+    match s.lights.as_slice() {
+        [Light::Point { position, intensity }] => {
+            assert!(position.distance(Vec3::new(0.0, 5.45, 0.0)) < 1e-4, "{position}");
+            assert!((*intensity - Vec3::splat(100.0)).abs().max_element() < 1e-3, "{intensity}");
+        }
+        other => panic!("lights {other:?}"),
+    }
 }
 
 #[test]

@@ -144,3 +144,29 @@ fn compare_of_an_image_with_itself_is_zero() {
     let (f, _) = vct::reference::metrics::flip(&frame.rgb8(), &vec![0u8; 64 * 64 * 3], 64, 64);
     assert!(f > 0.1, "FLIP against black: {f}");
 }
+
+#[test]
+fn point_lit_cornell_floor_matches_the_analytic_direct_light() {
+    let mut scene = Scene::embedded_default().unwrap();
+    let (position, intensity) = (Vec3::new(-1.0, 4.0, 1.5), Vec3::splat(20.0));
+    scene.lights = vec![Light::Point { position, intensity }];
+    let img = trace(&scene, 0, 1);
+    let mut checked = 0;
+    for y in (0..scene.camera.height).step_by(3) {
+        for x in (0..scene.camera.width).step_by(3) {
+            let (o, d) = scene.camera.ray(x as f32, y as f32);
+            // Floor points left of both boxes, in front of everything: the light sees them.
+            let t = -o.y / d.y;
+            let p = o + d * t;
+            if d.y >= 0.0 || !(-2.7..=-0.5).contains(&p.x) || !(1.2..=2.7).contains(&p.z) {
+                continue;
+            }
+            let to = position - p;
+            let want = Vec3::splat(0.73) / std::f32::consts::PI * intensity * to.normalize().y / to.length_squared();
+            let got = img.radiance[(y * scene.camera.width + x) as usize];
+            assert!((got - want).length() < 1e-3 * want.length(), "pixel ({x},{y}) at {p}: {got} vs {want}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 20, "only {checked} floor pixels checked");
+}

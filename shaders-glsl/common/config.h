@@ -17,6 +17,7 @@
 // Lights: kinds as stored in LightGpu.kind_pad.x.
 #define LIGHT_SPOT 0
 #define LIGHT_DIRECTIONAL 1
+#define LIGHT_POINT 2
 
 
 // Shadow filtering: PCF kernel radius in texels ((2r+1)^2 taps).

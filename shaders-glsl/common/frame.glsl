@@ -24,6 +24,7 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 voxel_dims;    // xyz: voxels along each axis
     vec4 aniso_atlas;   // the directional chains' atlas (render::radiance::AtlasLayout): x: the axis they are
                         // stacked along; y: one chain's pitch, z: the atlas' length, both over a chain's length
+    mat4 light_faces[6]; // a point light's cube shadow map: each face's world-to-clip (+x, -x, +y, -y, +z, -z)
 } frame;
 
 // World position to voxel coordinates (voxel v spans [v, v + 1)).

@@ -3,7 +3,7 @@
 // plus indirect light by voxel cone tracing — the diffuse cone set (common/gather.glsl) and one
 // specular cone along the reflection (aperture 0.1 pi roughness). Diffuse-cone occlusion gives
 // ambient occlusion.
-// The includer binds `shadow_map` (sampler2DShadow), `radiance_volume` (sampler3D), the moment
+// The includer binds `shadow_map` (sampler2DArrayShadow: one layer, or a point light's six), `radiance_volume` (sampler3D), the moment
 // `radiance_moment` and the directional chains' atlas `radiance_aniso` (sampled when the
 // ANISOTROPIC specialization constant is set; a constant, so the isotropic variant carries no
 // extra work).
@@ -24,10 +24,15 @@ layout(constant_id = 0) const bool ANISOTROPIC = false;
 float shadow_factor(vec3 p, vec3 n) {
     // World size of one shadow texel at p: 2 w / (P00 * resolution), P00 the length of the
     // projection's first row (the view is a rotation).
-    vec4 clip = frame.light_view_proj * vec4(p, 1.0);
-    float p00 = length(vec3(frame.light_view_proj[0][0], frame.light_view_proj[1][0], frame.light_view_proj[2][0]));
+    int layer;
+    mat4 vp = shadow_view_proj(p, layer);
+    vec4 clip = vp * vec4(p, 1.0);
+    float p00 = length(vec3(vp[0][0], vp[1][0], vp[2][0]));
     float texel_world = 2.0 * clip.w * frame.light_cone.z / p00;
-    clip = frame.light_view_proj * vec4(p + n * (SHADOW_NORMAL_OFFSET * texel_world), 1.0);
+    vec3 q = p + n * (SHADOW_NORMAL_OFFSET * texel_world);
+    // The offset point may lie across a cube edge: its own face then.
+    vp = shadow_view_proj(q, layer);
+    clip = vp * vec4(q, 1.0);
     if (clip.w <= 0.0) return 0.0;
     vec3 ndc = clip.xyz / clip.w;
     vec2 uv = ndc.xy * 0.5 + 0.5;
@@ -35,7 +40,7 @@ float shadow_factor(vec3 p, vec3 n) {
     float lit = 0.0;
     for (int y = -PCF_RADIUS; y <= PCF_RADIUS; y++)
         for (int x = -PCF_RADIUS; x <= PCF_RADIUS; x++)
-            lit += texture(shadow_map, vec3(uv + vec2(x, y) * texel, ndc.z));
+            lit += texture(shadow_map, vec4(uv + vec2(x, y) * texel, float(layer), ndc.z));
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
 }
 

@@ -13,7 +13,8 @@
 #include "rgb9e5.glsl"
 
 layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
-layout(set = 1, binding = 0) uniform sampler2D shadow_depth;
+// One layer, or a point light's six cube faces (the dispatch's z).
+layout(set = 1, binding = 0) uniform sampler2DArray shadow_depth;
 layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_albedo;
 layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
@@ -35,12 +36,15 @@ vec4 unpack(uint p) {
 void main() {
     int stride = int(push.stride);
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy) * stride + stride / 2;
-    ivec2 size = textureSize(shadow_depth, 0);
+    ivec2 size = textureSize(shadow_depth, 0).xy;
+    int layer = int(gl_GlobalInvocationID.z);
     if (any(greaterThanEqual(texel, size))) return;
-    float depth = texelFetch(shadow_depth, texel, 0).r;
+    float depth = texelFetch(shadow_depth, ivec3(texel, layer), 0).r;
     if (depth >= 1.0) return;
     vec2 uv = (vec2(texel) + 0.5) / vec2(size);
-    vec4 world = frame.light_inv_view_proj * vec4(uv * 2.0 - 1.0, depth, 1.0);
+    bool point = uint(frame.light_pos.w) == LIGHT_POINT;
+    mat4 inv = point ? inverse(frame.light_faces[layer]) : frame.light_inv_view_proj;
+    vec4 world = inv * vec4(uv * 2.0 - 1.0, depth, 1.0);
     vec3 p = world.xyz / world.w;
     // The lit point lies on a surface, but the shadow map's slope-scaled depth bias has pushed
     // it along the light ray behind that surface, by up to a few voxels where the light grazes.

@@ -1,9 +1,10 @@
 #version 460
 // Transforms scene vertices. Spec constant VIEW: 0 camera (depth prepass and shading: one
-// shader, so their depths match exactly), 1 light (shadow map).
+// shader, so their depths match exactly), 1 light (shadow map), 2 a point light's cube face FACE.
 #include "frame.glsl"
 
 layout(constant_id = 0) const uint VIEW = 0;
+layout(constant_id = 1) const uint FACE = 0;
 
 layout(location = 0) in vec3 in_pos;
 layout(location = 1) in vec3 in_normal;
@@ -22,5 +23,6 @@ void main() {
     out_normal = in_normal;
     out_uv = in_uv;
     out_tangent = in_tangent;
-    gl_Position = (VIEW == 1 ? frame.light_view_proj : frame.view_proj) * vec4(in_pos, 1.0);
+    mat4 m = VIEW == 2 ? frame.light_faces[FACE] : (VIEW == 1 ? frame.light_view_proj : frame.view_proj);
+    gl_Position = m * vec4(in_pos, 1.0);
 }

@@ -5,7 +5,7 @@
 #include "frame.glsl"
 
 layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
-layout(set = 2, binding = 0) uniform sampler2DShadow shadow_map;
+layout(set = 2, binding = 0) uniform sampler2DArrayShadow shadow_map;
 layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
 layout(set = 2, binding = 2, rgba16f) uniform readonly image2D gbuffer_albedo;
 layout(set = 2, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;

@@ -3,7 +3,7 @@
 // fragment applies its material's textures and runs `shade_surface` (common/shading.glsl).
 #include "frame.glsl"
 
-layout(set = 2, binding = 0) uniform sampler2DShadow shadow_map;
+layout(set = 2, binding = 0) uniform sampler2DArrayShadow shadow_map;
 layout(set = 2, binding = 1) uniform sampler3D radiance_volume;
 layout(set = 2, binding = 2) uniform sampler3D radiance_aniso;
 layout(set = 2, binding = 3) uniform sampler3D radiance_moment;

@@ -69,7 +69,7 @@ pub fn image_barrier_mips(
         base_mip_level: mips.start,
         level_count: mips.end - mips.start,
         base_array_layer: 0,
-        layer_count: 1,
+        layer_count: image.desc.layers,
     };
     layout_barrier(ctx, cmd, image.raw, range, old, new, src, dst);
 }
@@ -281,9 +281,28 @@ pub fn render_multi(
     height: u32,
     record: impl FnOnce(),
 ) {
-    let depth = depth.map(|(img, load)| {
+    render_depth_view(ctx, cmd, color, depth.map(|(img, load)| (img.view.raw, load)), width, height, record);
+}
+
+/// Renders into layer `layer` of the array image `depth` (cleared first), running `record`.
+pub fn render_depth_layer(ctx: &Context, cmd: vk::CommandBuffer, depth: &Image, layer: u32, record: impl FnOnce()) {
+    let e = depth.desc.extent;
+    let view = depth.layer_views[layer as usize].raw;
+    render_depth_view(ctx, cmd, &[], Some((view, vk::AttachmentLoadOp::CLEAR)), e.width, e.height, record);
+}
+
+fn render_depth_view(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    color: &[vk::RenderingAttachmentInfo],
+    depth: Option<(vk::ImageView, vk::AttachmentLoadOp)>,
+    width: u32,
+    height: u32,
+    record: impl FnOnce(),
+) {
+    let depth = depth.map(|(view, load)| {
         vk::RenderingAttachmentInfo::default()
-            .image_view(img.view.raw)
+            .image_view(view)
             .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
             .load_op(load)
             .store_op(vk::AttachmentStoreOp::STORE)

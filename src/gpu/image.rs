@@ -17,6 +17,10 @@ pub struct ImageDesc {
     pub extent: vk::Extent3D,
     pub mip_levels: u32,
     pub usage: vk::ImageUsageFlags,
+    /// Array layers (2D images).
+    pub layers: u32,
+    /// Viewed as an array (a 2D array view even of one layer).
+    pub array: bool,
 }
 
 impl ImageDesc {
@@ -27,7 +31,13 @@ impl ImageDesc {
             extent: vk::Extent3D { width, height, depth: 1 },
             mip_levels: 1,
             usage,
+            layers: 1,
+            array: false,
         }
+    }
+    /// A 2D array of `layers` layers, viewed as an array.
+    pub fn d2_array(format: vk::Format, width: u32, height: u32, layers: u32, usage: vk::ImageUsageFlags) -> Self {
+        ImageDesc { layers, array: true, ..Self::d2(format, width, height, usage) }
     }
     pub fn d3(format: vk::Format, n: u32, usage: vk::ImageUsageFlags) -> Self {
         ImageDesc {
@@ -36,6 +46,8 @@ impl ImageDesc {
             extent: vk::Extent3D { width: n, height: n, depth: n },
             mip_levels: 1,
             usage,
+            layers: 1,
+            array: false,
         }
     }
     /// A 3D image of `extent` texels.
@@ -101,16 +113,34 @@ impl ImageView {
         mips: u32,
         name: &str,
     ) -> Result<Self> {
-        let view_type =
-            if desc.ty == vk::ImageType::TYPE_3D { vk::ImageViewType::TYPE_3D } else { vk::ImageViewType::TYPE_2D };
+        Self::layers(ctx, image, desc, base_mip, mips, 0..desc.layers, name)
+    }
+
+    /// A view of `layers` (an array view when the image is viewed as an array and more than one
+    /// layer, or every layer, is asked for).
+    pub(super) fn layers(
+        ctx: &Arc<Context>,
+        image: vk::Image,
+        desc: &ImageDesc,
+        base_mip: u32,
+        mips: u32,
+        layers: std::ops::Range<u32>,
+        name: &str,
+    ) -> Result<Self> {
+        let whole = layers.start == 0 && layers.end == desc.layers;
+        let view_type = match desc.ty {
+            vk::ImageType::TYPE_3D => vk::ImageViewType::TYPE_3D,
+            _ if desc.array && whole => vk::ImageViewType::TYPE_2D_ARRAY,
+            _ => vk::ImageViewType::TYPE_2D,
+        };
         let info =
             vk::ImageViewCreateInfo::default().image(image).view_type(view_type).format(desc.format).subresource_range(
                 vk::ImageSubresourceRange {
                     aspect_mask: aspect_of(desc.format),
                     base_mip_level: base_mip,
                     level_count: mips,
-                    base_array_layer: 0,
-                    layer_count: 1,
+                    base_array_layer: layers.start,
+                    layer_count: layers.end - layers.start,
                 },
             );
         let raw = unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
@@ -134,12 +164,14 @@ pub struct Image {
     pub view: ImageView,
     /// One view per mip level (for storage writes and per-level sampling).
     pub mip_views: Vec<ImageView>,
+    /// One view per array layer of an array image (attachments render one layer each).
+    pub layer_views: Vec<ImageView>,
     pub name: String,
     /// Bytes of device memory bound to the image (the driver's requirement).
     pub bytes: u64,
 }
 
-/// Creates the image `desc` describes (one layer, one sample, optimal tiling), with `flags`.
+/// Creates the image `desc` describes (one sample, optimal tiling), with `flags`.
 pub(super) fn create_raw(ctx: &Context, desc: &ImageDesc, flags: vk::ImageCreateFlags) -> Result<vk::Image> {
     let info = vk::ImageCreateInfo::default()
         .flags(flags)
@@ -147,7 +179,7 @@ pub(super) fn create_raw(ctx: &Context, desc: &ImageDesc, flags: vk::ImageCreate
         .format(desc.format)
         .extent(desc.extent)
         .mip_levels(desc.mip_levels)
-        .array_layers(1)
+        .array_layers(desc.layers)
         .samples(vk::SampleCountFlags::TYPE_1)
         .tiling(vk::ImageTiling::OPTIMAL)
         .usage(desc.usage)
@@ -183,6 +215,13 @@ impl Image {
         } else {
             Vec::new()
         };
+        let layer_views = if desc.array {
+            (0..desc.layers)
+                .map(|l| ImageView::layers(ctx, raw, &desc, 0, desc.mip_levels, l..l + 1, &format!("{name} layer {l}")))
+                .collect::<Result<_>>()?
+        } else {
+            Vec::new()
+        };
         Ok(Image {
             ctx: ctx.clone(),
             raw,
@@ -190,6 +229,7 @@ impl Image {
             desc,
             view,
             mip_views,
+            layer_views,
             name: name.to_string(),
             bytes: requirements.size,
         })
@@ -219,7 +259,7 @@ impl Image {
             base_mip_level: 0,
             level_count: self.desc.mip_levels,
             base_array_layer: 0,
-            layer_count: 1,
+            layer_count: self.desc.layers,
         }
     }
 }
@@ -227,6 +267,7 @@ impl Image {
 impl Drop for Image {
     fn drop(&mut self) {
         self.mip_views.clear();
+        self.layer_views.clear();
         // The image first: a resident image's memory stays bound until it is destroyed.
         unsafe { self.ctx.device.destroy_image(self.raw, None) };
         if let Some(a) = self.allocation.take() {

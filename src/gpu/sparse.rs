@@ -78,6 +78,7 @@ impl Image {
             desc,
             view: ImageView::new(ctx, raw, &desc, 0, 1, name)?,
             mip_views: Vec::new(),
+            layer_views: Vec::new(),
             name: name.to_string(),
             bytes: 0,
         };

@@ -3,7 +3,7 @@
 //! emission), written independently of the GPU code.
 //!
 //! Light arrives two ways, each sampled where it is cheap (Veach 1997):
-//! - the scene's light (spot or directional) by a shadow ray at every vertex (next-event
+//! - the scene's light (spot, directional or point) by a shadow ray at every vertex (next-event
 //!   estimation);
 //! - emissive triangles both by a shadow ray to a point on an emitter (chosen by power) and by
 //!   the BSDF-sampled path hitting them, the two combined by multiple importance sampling
@@ -125,6 +125,11 @@ fn light_at(light: &Light, p: Vec3) -> (Vec3, Vec3, f32) {
             let l = to / d2.sqrt();
             let angle = (-l).dot(direction).clamp(-1.0, 1.0).acos().to_degrees();
             (intensity * Light::spot_falloff(angle, inner_deg, outer_deg) / d2, l, d2.sqrt())
+        }
+        Light::Point { position, intensity } => {
+            let to = position - p;
+            let d2 = to.length_squared().max(1e-12);
+            (intensity / d2, to / d2.sqrt(), d2.sqrt())
         }
     }
 }

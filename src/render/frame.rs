@@ -95,10 +95,23 @@ pub fn depth_range(eye: Vec3, bounds: &Aabb) -> (f32, f32) {
     (far * 1e-3, far)
 }
 
-/// World-to-clip matrix of the light's shadow map.
+/// The six faces of a point light's cube shadow map at `position`: each a 90° frustum along
+/// +x, -x, +y, -y, +z, -z (the layer of the same index), reaching the bounds' far side.
+pub fn point_faces(position: Vec3, bounds: &Aabb) -> [Mat4; 6] {
+    let (near, far) = depth_range(position, bounds);
+    let proj = flip_y(Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near.max(far * 2e-3), far));
+    let dirs = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
+    dirs.map(|d| {
+        let up = if d.y != 0.0 { Vec3::Z } else { Vec3::Y };
+        proj * Mat4::look_at_rh(position, position + d, up)
+    })
+}
+
+/// World-to-clip matrix of the light's shadow map (a point light's: its first cube face).
 pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
     let up_for = |d: Vec3| if d.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
     match *light {
+        Light::Point { position, .. } => point_faces(position, bounds)[0],
         Light::Spot { position, direction, outer_deg, .. } => {
             let view = Mat4::look_at_rh(position, position + direction, up_for(direction));
             let (near, far) = depth_range(position, bounds);
@@ -134,6 +147,13 @@ impl FrameUniforms {
             Light::Directional { direction, irradiance } => {
                 (Vec4::new(0.0, 0.0, 0.0, config::LIGHT_DIRECTIONAL as f32), direction, irradiance, Vec4::ZERO)
             }
+            Light::Point { position, intensity } => {
+                (position.extend(config::LIGHT_POINT as f32), Vec3::NEG_Y, intensity, Vec4::ZERO)
+            }
+        };
+        let light_faces = match *light {
+            Light::Point { position, .. } => point_faces(position, bounds),
+            _ => [Mat4::IDENTITY; 6],
         };
         let view_proj = camera.proj(near, far) * camera.view();
         let light_view_proj = light_view_proj(light, bounds);
@@ -165,6 +185,7 @@ impl FrameUniforms {
             history_shift: ((f.grid.origin - f.previous_origin) / f.grid.voxel).extend(0.0),
             voxel_dims: f.grid.dims.as_vec3().extend(0.0),
             aniso_atlas: super::radiance::AtlasLayout::new(f.grid).uniform(),
+            light_faces,
         }
     }
 }

@@ -32,6 +32,7 @@ pub struct InjectPass {
     _depth_sampler: Sampler,
     /// The grid's voxels along each axis.
     dims: [u32; 3],
+    shadow_layers: u32,
     shadow_resolution: u32,
     /// Injection reads every `stride`-th texel along each axis.
     pub stride: u32,
@@ -122,6 +123,7 @@ impl InjectPass {
             _depth_sampler: depth_sampler,
             dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
+            shadow_layers: shadow.map.desc.layers,
             stride,
             listed,
         })
@@ -152,7 +154,8 @@ impl InjectPass {
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
             self.inject.push(cmd, &self.stride);
             let s = self.shadow_resolution.div_ceil(self.stride);
-            gpu::dispatch(ctx, cmd, [s, s, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+            // One z per shadow-map layer: a point light's six cube faces.
+            gpu::dispatch(ctx, cmd, [s, s, self.shadow_layers], [WORKGROUP_2D, WORKGROUP_2D, 1]);
             gpu::memory_barrier(ctx, cmd, w, r);
         }
     }

@@ -221,6 +221,11 @@ fn shadow_texel_size(light: &Light, bounds: &crate::scene::Aabb, resolution: u32
     let radius = bounds.size().length() * 0.5;
     match *light {
         Light::Directional { .. } => 2.0 * radius * 1.01 / resolution as f32,
+        Light::Point { position, .. } => {
+            // A cube face spans 90°: 2 tan 45° = 2 world units per unit of distance.
+            let far = (bounds.center() - position).length() + radius;
+            2.0 * far / resolution as f32
+        }
         Light::Spot { position, outer_deg, .. } => {
             let far = (bounds.center() - position).length() + radius;
             2.0 * far * ((outer_deg + 1.0).to_radians()).tan() / resolution as f32
@@ -272,7 +277,8 @@ impl Renderer {
         let (voxels, voxelizer) = crate::voxel::build(ctx, &scene, &scene_gpu, grid, options.method, request)?;
         let pool = sparse.then_some(voxels.bricks.capacity);
         crate::voxel::volume::check_fits(ctx, &grid, need(pool, voxels.bricks.residency.as_ref()))?;
-        let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution)?;
+        let cube = matches!(scene.lights.first(), Some(Light::Point { .. }));
+        let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution, cube)?;
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
         let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal, chains)?;

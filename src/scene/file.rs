@@ -227,6 +227,12 @@ pub enum LightFile {
         inner_deg: f32,
         outer_deg: f32,
     },
+    /// A point light (cube shadow map).
+    Point {
+        position: [f32; 3],
+        /// W/sr in every direction.
+        intensity: [f32; 3],
+    },
     Directional {
         /// The way the light travels.
         direction: [f32; 3],

@@ -3,6 +3,8 @@
 //! `KHR_materials_emissive_strength`). The node hierarchy is flattened into world space; each
 //! primitive's triangles join the draw of its material, as OBJ groups do (scene::obj).
 //!
+//! Spot, directional and point lights all load (a point light gets a cube shadow map).
+//!
 //! Units: glTF gives punctual lights in photometric units (candela for spot and point lights,
 //! lux for directional ones) and vct in radiometric ones (W/sr, W/m²). One convention converts
 //! them: 683 lm/W, the luminous efficacy of light at 555 nm (so 683 cd is 1 W/sr, 683 lux is
@@ -12,7 +14,7 @@
 //! vct's materials hold one metallic, roughness and emission value each: a metallic-roughness or
 //! emissive texture is folded into its factor by the texture's mean (with a warning naming it).
 //! Everything the renderer does not take (skins, morph targets, other extensions, alpha modes,
-//! orthographic cameras, point lights for now) is named in a warning; every malformed input (a
+//! orthographic cameras) is named in a warning; every malformed input (a
 //! truncated .glb, an accessor past its buffer, a missing buffer or image) is an error naming the
 //! file.
 
@@ -466,7 +468,9 @@ impl Walk<'_> {
                     outer_deg: outer,
                 });
             }
-            Kind::Point => self.ignore("point lights (not yet rendered)".into()),
+            Kind::Point => {
+                self.lights.push(Light::Point { position: world.transform_point3(Vec3::ZERO), intensity: colour })
+            }
         }
     }
 }

@@ -49,6 +49,9 @@ pub struct FrameUniforms {
     pub voxel_dims: Vec4,
     /// The directional chains' atlas (render::radiance::AtlasLayout::uniform).
     pub aniso_atlas: Vec4,
+    /// A point light's cube shadow map: the world-to-clip matrix of each face (+x, -x, +y, -y,
+    /// +z, -z), each the layer of that index (render::frame::point_faces).
+    pub light_faces: [Mat4; 6],
 }
 
 pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [

@@ -162,8 +162,22 @@ impl Camera {
 
 #[derive(Clone, Copy, Debug)]
 pub enum Light {
-    Spot { position: Vec3, direction: Vec3, intensity: Vec3, inner_deg: f32, outer_deg: f32 },
-    Directional { direction: Vec3, irradiance: Vec3 },
+    Spot {
+        position: Vec3,
+        direction: Vec3,
+        intensity: Vec3,
+        inner_deg: f32,
+        outer_deg: f32,
+    },
+    Directional {
+        direction: Vec3,
+        irradiance: Vec3,
+    },
+    /// Light from a point in every direction, `intensity` W/sr (a cube shadow map).
+    Point {
+        position: Vec3,
+        intensity: Vec3,
+    },
 }
 
 impl Light {
@@ -184,6 +198,7 @@ impl Light {
             Light::Directional { direction, irradiance } => {
                 Light::Directional { direction, irradiance: irradiance * s }
             }
+            Light::Point { position, intensity } => Light::Point { position, intensity: intensity * s },
         }
     }
 }
@@ -601,6 +616,10 @@ fn convert_light(path: &Path, l: &LightFile) -> Result<Light> {
                 inner_deg,
                 outer_deg,
             }
+        }
+        LightFile::Point { position, intensity } => {
+            check_finite(path, "light.position", &position)?;
+            Light::Point { position: position.into(), intensity: check_nonneg(path, "light.intensity", intensity)? }
         }
         LightFile::Directional { direction, irradiance } => Light::Directional {
             direction: check_direction(path, "light.direction", direction)?,
