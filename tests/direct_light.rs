@@ -106,16 +106,28 @@ fn direct_light_matches_analytic_values() {
         (Vec3::new(-2.75, 3.6, 1.0), Vec3::X, red),
         (Vec3::new(-2.75, 1.0, 1.6), Vec3::X, red),
     ];
-    for (p, n, albedo) in points {
-        let (x, y) = common::pixel_of(&scene, p);
+    check_points(&scene, &frame, &points, |q| lit(&scene, q), |q, n, albedo| analytic_radiance(&scene, q, n, albedo));
+}
+
+/// At each (point, normal, albedo): the pixel that sees the point must see it (within 0.1 m),
+/// the exact point it sees must be `lit`, and its radiance must be `expected` within 3%.
+fn check_points(
+    scene: &Scene,
+    frame: &FrameImages,
+    points: &[(Vec3, Vec3, Vec3)],
+    lit: impl Fn(Vec3) -> bool,
+    expected: impl Fn(Vec3, Vec3, Vec3) -> Vec3,
+) {
+    for &(p, n, albedo) in points {
+        let (x, y) = common::pixel_of(scene, p);
         // Recompute the exact point the pixel centre sees.
         let (o, d) = scene.camera.ray(x as f32, y as f32);
-        let (t, _) = common::raycast(&scene, o, d, 1e9).expect("pixel sees the scene");
+        let (t, _) = common::raycast(scene, o, d, 1e9).expect("pixel sees the scene");
         let q = o + d * t;
         assert!((q - p).length() < 0.1, "pixel ({x},{y}) sees {q}, not {p}");
-        assert!(lit(&scene, q));
-        let expected = analytic_radiance(&scene, q, n, albedo);
-        let got = common::hdr(&frame, x, y);
+        assert!(lit(q), "{q} should see the light");
+        let expected = expected(q, n, albedo);
+        let got = common::hdr(frame, x, y);
         let err = ((got - expected).length() / expected.length()).abs();
         println!("{q}: GPU {got}, analytic {expected}, rel. error {err:.4}");
         assert!(err < 0.03, "at {q} (pixel {x},{y}): GPU {got}, analytic {expected}, rel. error {err:.4}");
@@ -161,20 +173,11 @@ fn point_light_matches_analytic_values_on_every_face() {
         (Vec3::new(2.75, 3.0, 1.0), -Vec3::X, Vec3::new(0.12, 0.45, 0.15)),
         (Vec3::new(0.0, 4.0, -2.75), Vec3::Z, white),
     ];
-    for (p, n, albedo) in points {
-        let (x, y) = common::pixel_of(&scene, p);
-        let (o, d) = scene.camera.ray(x as f32, y as f32);
-        let (t, _) = common::raycast(&scene, o, d, 1e9).expect("pixel sees the scene");
-        let q = o + d * t;
-        assert!((q - p).length() < 0.1, "pixel ({x},{y}) sees {q}, not {p}");
-        assert!(sees_light(q), "{q} should see the light");
+    let expected = |q: Vec3, n: Vec3, albedo: Vec3| {
         let to = position - q;
-        let expected = albedo / std::f32::consts::PI * intensity * n.dot(to.normalize()).max(0.0) / to.length_squared();
-        let got = common::hdr(&frame, x, y);
-        let err = (got - expected).length() / expected.length();
-        println!("{q}: GPU {got}, analytic {expected}, rel. error {err:.4}");
-        assert!(err < 0.03, "at {q} (pixel {x},{y}): GPU {got}, analytic {expected}, rel. error {err:.4}");
-    }
+        albedo / std::f32::consts::PI * intensity * n.dot(to.normalize()).max(0.0) / to.length_squared()
+    };
+    check_points(&scene, &frame, &points, sees_light, expected);
     // Behind the tall box, seen from the light: dark.
     let hidden = (0..frame.height)
         .flat_map(|y| (0..frame.width).map(move |x| (x, y)))

@@ -83,26 +83,29 @@ fn white_furnace_converges_to_the_geometric_series() {
 #[test]
 fn spot_lit_cornell_floor_matches_the_analytic_direct_light() {
     let scene = Scene::embedded_default().unwrap();
-    let img = trace(&scene, 0, 1);
     let Light::Spot { position, direction, intensity, inner_deg, outer_deg } = scene.lights[0] else { panic!() };
+    check_floor(&scene, |p| {
+        let to = position - p;
+        let l = to.normalize();
+        let angle = (-l).dot(direction).acos().to_degrees();
+        intensity * Light::spot_falloff(angle, inner_deg, outer_deg) * l.y / to.length_squared()
+    });
+}
+
+/// Traces `scene`'s direct light and checks the floor left of the boxes, in front of
+/// everything (lit by the lights used here), against albedo/π times `irradiance(p)`, to 10⁻³.
+fn check_floor(scene: &Scene, irradiance: impl Fn(Vec3) -> Vec3) {
+    let img = trace(scene, 0, 1);
     let mut checked = 0;
     for y in (0..scene.camera.height).step_by(3) {
         for x in (0..scene.camera.width).step_by(3) {
             let (o, d) = scene.camera.ray(x as f32, y as f32);
-            // Floor points left of the short box's shadow, in front of everything.
             let t = -o.y / d.y;
             let p = o + d * t;
             if d.y >= 0.0 || !(-2.7..=-0.5).contains(&p.x) || !(1.2..=2.7).contains(&p.z) {
                 continue;
             }
-            let to = position - p;
-            let l = to.normalize();
-            let angle = (-l).dot(direction).acos().to_degrees();
-            let want = Vec3::splat(0.73) / std::f32::consts::PI
-                * intensity
-                * Light::spot_falloff(angle, inner_deg, outer_deg)
-                * l.y
-                / to.length_squared();
+            let want = Vec3::splat(0.73) / std::f32::consts::PI * irradiance(p);
             let got = img.radiance[(y * scene.camera.width + x) as usize];
             assert!((got - want).length() < 1e-3 * want.length(), "pixel ({x},{y}) at {p}: {got} vs {want}");
             checked += 1;
@@ -150,23 +153,8 @@ fn point_lit_cornell_floor_matches_the_analytic_direct_light() {
     let mut scene = Scene::embedded_default().unwrap();
     let (position, intensity) = (Vec3::new(-1.0, 4.0, 1.5), Vec3::splat(20.0));
     scene.lights = vec![Light::Point { position, intensity }];
-    let img = trace(&scene, 0, 1);
-    let mut checked = 0;
-    for y in (0..scene.camera.height).step_by(3) {
-        for x in (0..scene.camera.width).step_by(3) {
-            let (o, d) = scene.camera.ray(x as f32, y as f32);
-            // Floor points left of both boxes, in front of everything: the light sees them.
-            let t = -o.y / d.y;
-            let p = o + d * t;
-            if d.y >= 0.0 || !(-2.7..=-0.5).contains(&p.x) || !(1.2..=2.7).contains(&p.z) {
-                continue;
-            }
-            let to = position - p;
-            let want = Vec3::splat(0.73) / std::f32::consts::PI * intensity * to.normalize().y / to.length_squared();
-            let got = img.radiance[(y * scene.camera.width + x) as usize];
-            assert!((got - want).length() < 1e-3 * want.length(), "pixel ({x},{y}) at {p}: {got} vs {want}");
-            checked += 1;
-        }
-    }
-    assert!(checked > 20, "only {checked} floor pixels checked");
+    check_floor(&scene, |p| {
+        let to = position - p;
+        intensity * to.normalize().y / to.length_squared()
+    });
 }
