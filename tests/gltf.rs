@@ -119,6 +119,12 @@ fn malformed_gltf_is_an_error_naming_the_file() {
         let e = load_err(&p);
         assert!(e.contains(&format!("cut{cut}.glb")), "{e}");
     }
+    // A header that declares fewer bytes than itself (the glTF crate's unchecked subtraction).
+    let mut short = glb.clone();
+    short[8..12].copy_from_slice(&11u32.to_le_bytes());
+    let p = d.join("short-header.glb");
+    std::fs::write(&p, &short).unwrap();
+    assert!(load_err(&p).contains("short-header.glb"));
     let text = std::fs::read_to_string(GLTF).unwrap();
     std::fs::copy(BIN, d.join("cornell-spot.bin")).unwrap();
     let variant = |name: &str, from: &str, to: &str| {

@@ -478,6 +478,14 @@ impl Walk<'_> {
 /// Loads a `.gltf` or `.glb`: the default scene's (or the first scene's) nodes, flattened.
 pub fn load_gltf(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result<GltfScene> {
     let bytes = read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
+    // The crate subtracts the header's size from the length a .glb header declares without a
+    // check (found by the fuzzer): a declared length under 12 bytes is refused here.
+    if bytes.starts_with(b"glTF") {
+        let declared = bytes.get(8..12).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+        if declared.is_none_or(|n| n < 12) {
+            return Err(bad(path, format!("binary glTF header declares {declared:?} bytes, under its own 12")));
+        }
+    }
     let doc = gltf::Gltf::from_slice(&bytes).map_err(|e| bad(path, e))?;
     if let Some(ext) = doc.extensions_required().find(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
         return Err(Error::input(path, format!("requires the extension {ext}, which vct does not read")));
