@@ -142,6 +142,9 @@ fn malformed_gltf_is_an_error_naming_the_file() {
     // Broken JSON.
     let e = load_err(&variant("json.gltf", "\"asset\"", "\"broken\" \"asset\""));
     assert!(e.contains("json.gltf"), "{e}");
+    // A POSITION accessor that does not exist (the glTF crate's validation indexes it unchecked).
+    let e = load_err(&variant("noaccessor.gltf", "\"POSITION\": 0", "\"POSITION\": 999"));
+    assert!(e.contains("noaccessor.gltf") && e.contains("999"), "{e}");
     // A required extension vct cannot read.
     let e = load_err(&variant(
         "required.gltf",

@@ -475,6 +475,36 @@ impl Walk<'_> {
     }
 }
 
+/// The crate's validation reads each primitive's POSITION accessor without checking that it
+/// exists (found by the fuzzer): a POSITION index past the accessors is refused here. JSON the
+/// crate cannot read is left to its own error.
+fn check_position_indices(path: &Path, bytes: &[u8]) -> Result<()> {
+    let json = match bytes.starts_with(b"glTF") {
+        true => match gltf::Glb::from_slice(bytes) {
+            Ok(glb) => glb.json.into_owned(),
+            Err(_) => return Ok(()),
+        },
+        false => bytes.to_vec(),
+    };
+    let Ok(root) = gltf::json::deserialize::from_slice::<gltf::json::Root>(&json) else { return Ok(()) };
+    let positions = gltf::json::validation::Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            if let Some(i) = prim.attributes.get(&positions).filter(|i| i.value() >= root.accessors.len()) {
+                return Err(bad(
+                    path,
+                    format!(
+                        "mesh {m} primitive {p}: POSITION names accessor {}, of {}",
+                        i.value(),
+                        root.accessors.len()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Loads a `.gltf` or `.glb`: the default scene's (or the first scene's) nodes, flattened.
 pub fn load_gltf(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result<GltfScene> {
     let bytes = read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
@@ -486,6 +516,7 @@ pub fn load_gltf(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Resul
             return Err(bad(path, format!("binary glTF header declares {declared:?} bytes, under its own 12")));
         }
     }
+    check_position_indices(path, &bytes)?;
     let doc = gltf::Gltf::from_slice(&bytes).map_err(|e| bad(path, e))?;
     if let Some(ext) = doc.extensions_required().find(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
         return Err(Error::input(path, format!("requires the extension {ext}, which vct does not read")));
