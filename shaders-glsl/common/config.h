@@ -18,6 +18,10 @@
 #define LIGHT_SPOT 0
 #define LIGHT_DIRECTIONAL 1
 #define LIGHT_POINT 2
+// Lights per scene, each with its own shadow map (a point light's six cube faces, the others one
+// layer each) in one layered shadow map.
+#define MAX_LIGHTS 8
+#define MAX_SHADOW_LAYERS 48
 
 
 // Shadow filtering: PCF kernel radius in texels ((2r+1)^2 taps).

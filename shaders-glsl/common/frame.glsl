@@ -4,16 +4,18 @@
 #define VCT_FRAME_GLSL
 #include "config.h"
 
+// One light (render::frame::LightGpu).
+struct LightData {
+    vec4 position;   // xyz: spot or point position; w: LIGHT_*
+    vec4 direction;  // xyz: the way light travels (unit)
+    vec4 color;      // rgb: intensity (W/sr; spot, point) or irradiance (W/m^2; directional)
+    vec4 cone;       // x: inner, y: outer half-angle (radians); z: shadow texel size (uv); w: first shadow layer
+};
+
 layout(set = 0, binding = 0) uniform FrameUniforms {
     mat4 view_proj;
-    mat4 light_view_proj;
-    mat4 light_inv_view_proj;
     mat4 inv_view_proj;
     vec4 camera_pos;    // xyz
-    vec4 light_pos;     // xyz: spot position; w: LIGHT_SPOT or LIGHT_DIRECTIONAL
-    vec4 light_dir;     // xyz: the way light travels (unit)
-    vec4 light_color;   // rgb: spot intensity (W/sr) or directional irradiance (W/m^2)
-    vec4 light_cone;    // x: inner half-angle, y: outer half-angle (radians); z: shadow texel size (uv)
     vec4 viewport;      // xy: render size in pixels
     vec4 voxel_origin;  // xyz: voxel grid origin (world); w: voxel size
     vec4 voxel_grid;    // x: longest axis N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
@@ -24,7 +26,10 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 voxel_dims;    // xyz: voxels along each axis
     vec4 aniso_atlas;   // the directional chains' atlas (render::radiance::AtlasLayout): x: the axis they are
                         // stacked along; y: one chain's pitch, z: the atlas' length, both over a chain's length
-    mat4 light_faces[6]; // a point light's cube shadow map: each face's world-to-clip (+x, -x, +y, -y, +z, -z)
+    vec4 light_count;   // x: lights in `lights`
+    LightData lights[MAX_LIGHTS];
+    mat4 light_layers[MAX_SHADOW_LAYERS]; // each shadow-map layer's world-to-clip (a point light's six
+                                          // cube faces: +x, -x, +y, -y, +z, -z)
 } frame;
 
 // World position to voxel coordinates (voxel v spans [v, v + 1)).

@@ -21,22 +21,22 @@ layout(constant_id = 0) const bool ANISOTROPIC = false;
 // moves SHADOW_NORMAL_OFFSET shadow texels along the normal (normal-offset shadows), so the
 // rasterizer's slope-scaled depth bias can stay small: a large one lets light under a thin
 // wall where it meets the floor (the stability bench, regime 3).
-float shadow_factor(vec3 p, vec3 n) {
+float shadow_factor(int j, vec3 p, vec3 n) {
     // World size of one shadow texel at p: 2 w / (P00 * resolution), P00 the length of the
     // projection's first row (the view is a rotation).
     int layer;
-    mat4 vp = shadow_view_proj(p, layer);
+    mat4 vp = shadow_view_proj(j, p, layer);
     vec4 clip = vp * vec4(p, 1.0);
     float p00 = length(vec3(vp[0][0], vp[1][0], vp[2][0]));
-    float texel_world = 2.0 * clip.w * frame.light_cone.z / p00;
+    float texel = frame.lights[j].cone.z;
+    float texel_world = 2.0 * clip.w * texel / p00;
     vec3 q = p + n * (SHADOW_NORMAL_OFFSET * texel_world);
     // The offset point may lie across a cube edge: its own face then.
-    vp = shadow_view_proj(q, layer);
+    vp = shadow_view_proj(j, q, layer);
     clip = vp * vec4(q, 1.0);
     if (clip.w <= 0.0) return 0.0;
     vec3 ndc = clip.xyz / clip.w;
     vec2 uv = ndc.xy * 0.5 + 0.5;
-    float texel = frame.light_cone.z;
     float lit = 0.0;
     for (int y = -PCF_RADIUS; y <= PCF_RADIUS; y++)
         for (int x = -PCF_RADIUS; x <= PCF_RADIUS; x++)
@@ -52,11 +52,13 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
     // Two-sided: shade the side facing the viewer.
     if (dot(n, v) < 0.0) n = -n;
 
-    vec3 l;
-    vec3 irradiance = light_incident(world, l);
     vec3 direct = vec3(0.0);
-    if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
-        direct = irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(world, n);
+    for (int j = 0; j < light_count(); j++) {
+        vec3 l;
+        vec3 irradiance = light_incident(j, world, l);
+        if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
+            direct += irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(j, world, n);
+        }
     }
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
     float occlusion = 0.0;

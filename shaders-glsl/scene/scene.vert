@@ -1,6 +1,6 @@
 #version 460
 // Transforms scene vertices. Spec constant VIEW: 0 camera (depth prepass and shading: one
-// shader, so their depths match exactly), 1 light (shadow map), 2 a point light's cube face FACE.
+// shader, so their depths match exactly), 1 light (shadow-map layer FACE).
 #include "frame.glsl"
 
 layout(constant_id = 0) const uint VIEW = 0;
@@ -23,6 +23,6 @@ void main() {
     out_normal = in_normal;
     out_uv = in_uv;
     out_tangent = in_tangent;
-    mat4 m = VIEW == 2 ? frame.light_faces[FACE] : (VIEW == 1 ? frame.light_view_proj : frame.view_proj);
+    mat4 m = VIEW == 1 ? frame.light_layers[FACE] : frame.view_proj;
     gl_Position = m * vec4(in_pos, 1.0);
 }

@@ -5,7 +5,7 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::config;
-pub use crate::scene::gpu::FrameUniforms;
+pub use crate::scene::gpu::{FrameUniforms, LightGpu};
 use crate::scene::{flip_y, Aabb, Camera, GiSettings, Light};
 use crate::voxel::VoxelGrid;
 
@@ -131,46 +131,71 @@ pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
     }
 }
 
+/// Shadow-map layers of a light: a point light's six cube faces, else one.
+pub fn shadow_layers(light: &Light) -> u32 {
+    if matches!(light, Light::Point { .. }) {
+        6
+    } else {
+        1
+    }
+}
+
+/// Each light's world-to-clip matrices, one per shadow-map layer, in light order.
+fn layer_matrices(light: &Light, bounds: &Aabb) -> Vec<Mat4> {
+    match *light {
+        Light::Point { position, .. } => point_faces(position, bounds).to_vec(),
+        _ => vec![light_view_proj(light, bounds)],
+    }
+}
+
 impl FrameUniforms {
-    /// `light`: the shadowed light, if the scene has one (emitters light it besides).
-    pub fn new(camera: &Camera, light: Option<&Light>, bounds: &Aabb, shadow_resolution: u32, f: &FrameState) -> Self {
+    /// `lights`: the shadowed lights (emitters light the scene besides); at most MAX_LIGHTS,
+    /// with MAX_SHADOW_LAYERS layers in all (scene loading enforces both).
+    pub fn new(camera: &Camera, lights: &[Light], bounds: &Aabb, shadow_resolution: u32, f: &FrameState) -> Self {
         let (near, far) = depth_range(camera.eye, bounds);
-        let none = Light::Directional { direction: Vec3::NEG_Y, irradiance: Vec3::ZERO };
-        let light = light.unwrap_or(&none);
-        let (light_pos, light_dir, light_color, cone) = match *light {
-            Light::Spot { position, direction, intensity, inner_deg, outer_deg } => (
-                position.extend(config::LIGHT_SPOT as f32),
-                direction,
-                intensity,
-                Vec4::new(inner_deg.to_radians(), outer_deg.to_radians(), 0.0, 0.0),
-            ),
-            Light::Directional { direction, irradiance } => {
-                (Vec4::new(0.0, 0.0, 0.0, config::LIGHT_DIRECTIONAL as f32), direction, irradiance, Vec4::ZERO)
+        let mut gpu_lights = [LightGpu::default(); config::MAX_LIGHTS as usize];
+        let mut light_layers = [Mat4::IDENTITY; config::MAX_SHADOW_LAYERS as usize];
+        let mut layer = 0usize;
+        let texel = 1.0 / shadow_resolution as f32;
+        let lights = &lights[..lights.len().min(gpu_lights.len())];
+        for (g, light) in gpu_lights.iter_mut().zip(lights) {
+            let first = layer as f32;
+            *g = match *light {
+                Light::Spot { position, direction, intensity, inner_deg, outer_deg } => LightGpu {
+                    position: position.extend(config::LIGHT_SPOT as f32),
+                    direction: direction.normalize().extend(0.0),
+                    color: intensity.extend(0.0),
+                    cone: Vec4::new(inner_deg.to_radians(), outer_deg.to_radians(), texel, first),
+                },
+                Light::Directional { direction, irradiance } => LightGpu {
+                    position: Vec4::new(0.0, 0.0, 0.0, config::LIGHT_DIRECTIONAL as f32),
+                    direction: direction.normalize().extend(0.0),
+                    color: irradiance.extend(0.0),
+                    cone: Vec4::new(0.0, 0.0, texel, first),
+                },
+                Light::Point { position, intensity } => LightGpu {
+                    position: position.extend(config::LIGHT_POINT as f32),
+                    direction: Vec4::new(0.0, -1.0, 0.0, 0.0),
+                    color: intensity.extend(0.0),
+                    cone: Vec4::new(0.0, 0.0, texel, first),
+                },
+            };
+            for m in layer_matrices(light, bounds) {
+                if let Some(slot) = light_layers.get_mut(layer) {
+                    *slot = m;
+                }
+                layer += 1;
             }
-            Light::Point { position, intensity } => {
-                (position.extend(config::LIGHT_POINT as f32), Vec3::NEG_Y, intensity, Vec4::ZERO)
-            }
-        };
-        let light_faces = match *light {
-            Light::Point { position, .. } => point_faces(position, bounds),
-            _ => [Mat4::IDENTITY; 6],
-        };
+        }
         let view_proj = camera.proj(near, far) * camera.view();
-        let light_view_proj = light_view_proj(light, bounds);
         let level = match f.view {
             View::Radiance(l) => l.min(f.mip_levels.saturating_sub(1)),
             _ => 0,
         };
         FrameUniforms {
             view_proj,
-            light_view_proj,
-            light_inv_view_proj: light_view_proj.inverse(),
             inv_view_proj: view_proj.inverse(),
             camera_pos: camera.eye.extend(1.0),
-            light_pos,
-            light_dir: light_dir.normalize().extend(0.0),
-            light_color: light_color.extend(0.0),
-            light_cone: Vec4::new(cone.x, cone.y, 1.0 / shadow_resolution as f32, 0.0),
             viewport: Vec4::new(camera.width as f32, camera.height as f32, 0.0, 0.0),
             voxel_origin: f.grid.origin.extend(f.grid.voxel),
             voxel_grid: Vec4::new(
@@ -185,7 +210,9 @@ impl FrameUniforms {
             history_shift: ((f.grid.origin - f.previous_origin) / f.grid.voxel).extend(0.0),
             voxel_dims: f.grid.dims.as_vec3().extend(0.0),
             aniso_atlas: super::radiance::AtlasLayout::new(f.grid).uniform(),
-            light_faces,
+            light_count: Vec4::new(lights.len() as f32, 0.0, 0.0, 0.0),
+            lights: gpu_lights,
+            light_layers,
         }
     }
 }

@@ -32,7 +32,8 @@ pub struct InjectPass {
     _depth_sampler: Sampler,
     /// The grid's voxels along each axis.
     dims: [u32; 3],
-    shadow_layers: u32,
+    /// Each light's shadow-map layers (the dispatch's z, one dispatch per light).
+    light_layers: Vec<u32>,
     shadow_resolution: u32,
     /// Injection reads every `stride`-th texel along each axis.
     pub stride: u32,
@@ -112,7 +113,7 @@ impl InjectPass {
             "inject",
             Stage::new(c, shaders::GI_INJECT_COMP).spec(&bricks.spec(0)),
             &[scene.set.layout, inject_set.layout],
-            4,
+            8,
         )?;
         Ok(InjectPass {
             ctx: ctx.clone(),
@@ -123,7 +124,7 @@ impl InjectPass {
             _depth_sampler: depth_sampler,
             dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
-            shadow_layers: shadow.map.desc.layers,
+            light_layers: shadow.light_layers.clone(),
             stride,
             listed,
         })
@@ -152,10 +153,14 @@ impl InjectPass {
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         if light {
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
-            self.inject.push(cmd, &self.stride);
             let s = self.shadow_resolution.div_ceil(self.stride);
-            // One z per shadow-map layer: a point light's six cube faces.
-            gpu::dispatch(ctx, cmd, [s, s, self.shadow_layers], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+            // One dispatch per light, one z per layer of its shadow map (a point light's six
+            // cube faces). Each writes the light of all the lights to the voxels it finds, the
+            // same value whichever lands last: no ordering between the dispatches is needed.
+            for (light, &layers) in self.light_layers.iter().enumerate() {
+                self.inject.push(cmd, &[self.stride, light as u32]);
+                gpu::dispatch(ctx, cmd, [s, s, layers], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+            }
             gpu::memory_barrier(ctx, cmd, w, r);
         }
     }

@@ -277,8 +277,7 @@ impl Renderer {
         let (voxels, voxelizer) = crate::voxel::build(ctx, &scene, &scene_gpu, grid, options.method, request)?;
         let pool = sparse.then_some(voxels.bricks.capacity);
         crate::voxel::volume::check_fits(ctx, &grid, need(pool, voxels.bricks.residency.as_ref()))?;
-        let cube = matches!(scene.lights.first(), Some(Light::Point { .. }));
-        let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution, cube)?;
+        let shadow = ShadowPass::new(ctx, &scene_gpu, scene.settings.shadow_resolution, &scene.lights)?;
         let gi = &scene.settings.gi;
         let aniso = gi.filter == Filter::Aniso;
         let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal, chains)?;
@@ -363,7 +362,7 @@ impl Renderer {
             first_frame: self.frame_index.get() == 0,
             previous_origin: self.previous_origin.get(),
         };
-        let u = FrameUniforms::new(&s.camera, s.lights.first(), &s.mesh.bounds, s.settings.shadow_resolution, &state);
+        let u = FrameUniforms::new(&s.camera, &s.lights, &s.mesh.bounds, s.settings.shadow_resolution, &state);
         self.scene_gpu.uniforms.write_pod(&u);
     }
 

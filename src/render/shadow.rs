@@ -1,8 +1,9 @@
 //! Shadow map pass (Freed 2018 §4.2): the scene's depth from the light into a D32 texture,
 //! with a small slope-scaled depth bias (shading adds a normal offset; a large slope bias let
-//! light under thin walls); read by shading (PCF) and later by radiance injection. A point
-//! light's map is a cube: six layers, each a 90° face rendered by its own pipeline (the face a
-//! specialization constant of the scene vertex shader).
+//! light under thin walls); read by shading (PCF) and later by radiance injection. Every light
+//! has its own layers of one layered map: a point light six (a cube of 90° faces), the others
+//! one; each layer is rendered by its own pipeline (the layer a specialization constant of the
+//! scene vertex shader, which reads that layer's matrix from the frame uniforms).
 
 use std::sync::Arc;
 
@@ -11,6 +12,7 @@ use ash::vk;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Context, GraphicsDesc, Image, ImageDesc, Pipeline, Stage};
 use crate::scene::gpu::{vertex_layout, SceneGpu};
+use crate::scene::Light;
 
 pub const SHADOW_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 
@@ -18,19 +20,22 @@ pub struct ShadowPass {
     ctx: Arc<Context>,
     /// One per layer of the map.
     pipelines: Vec<Pipeline>,
+    /// Each light's layers, in light order.
+    pub light_layers: Vec<u32>,
     pub map: Image,
 }
 
 impl ShadowPass {
-    /// `cube`: a point light's six faces, else one map.
-    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, resolution: u32, cube: bool) -> Result<Self> {
+    /// `lights`: the scene's shadowed lights (a scene without one keeps one unused layer).
+    pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, resolution: u32, lights: &[Light]) -> Result<Self> {
         let usage = vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED;
-        let layers = if cube { 6 } else { 1 };
+        let light_layers: Vec<u32> = lights.iter().map(super::frame::shadow_layers).collect();
+        let layers = light_layers.iter().sum::<u32>().max(1);
         let map =
             Image::new(ctx, "shadow map", ImageDesc::d2_array(SHADOW_FORMAT, resolution, resolution, layers, usage))?;
-        let pipeline = |face: u32| {
-            // Scene vertex shader: VIEW 1 (the light's one map) or 2 (cube face FACE).
-            let spec = [if cube { 2 } else { 1 }, face];
+        let pipeline = |layer: u32| {
+            // Scene vertex shader: VIEW 1 (a light's shadow map), layer FACE.
+            let spec = [1, layer];
             let mut desc = GraphicsDesc::new(
                 "shadow map",
                 vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&spec)],
@@ -58,7 +63,7 @@ impl ShadowPass {
                 scope::NONE,
             )
         })?;
-        Ok(ShadowPass { ctx: ctx.clone(), pipelines, map })
+        Ok(ShadowPass { ctx: ctx.clone(), pipelines, light_layers, map })
     }
 
     /// Renders the shadow map and leaves it ready for sampling in fragment and compute shaders.

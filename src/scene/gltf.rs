@@ -14,7 +14,7 @@
 //! vct's materials hold one metallic, roughness and emission value each: a metallic-roughness or
 //! emissive texture is folded into its factor by the texture's mean (with a warning naming it).
 //! Everything the renderer does not take (skins, morph targets, other extensions, alpha modes,
-//! orthographic cameras) is named in a warning; every malformed input (a
+//! orthographic cameras, lights beyond MAX_LIGHTS) is named in a warning; every malformed input (a
 //! truncated .glb, an accessor past its buffer, a missing buffer or image) is an error naming the
 //! file.
 

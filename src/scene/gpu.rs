@@ -29,14 +29,8 @@ pub struct MaterialGpu {
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
     pub view_proj: Mat4,
-    pub light_view_proj: Mat4,
-    pub light_inv_view_proj: Mat4,
     pub inv_view_proj: Mat4,
     pub camera_pos: Vec4,
-    pub light_pos: Vec4,
-    pub light_dir: Vec4,
-    pub light_color: Vec4,
-    pub light_cone: Vec4,
     pub viewport: Vec4,
     pub voxel_origin: Vec4,
     pub voxel_grid: Vec4,
@@ -49,9 +43,26 @@ pub struct FrameUniforms {
     pub voxel_dims: Vec4,
     /// The directional chains' atlas (render::radiance::AtlasLayout::uniform).
     pub aniso_atlas: Vec4,
-    /// A point light's cube shadow map: the world-to-clip matrix of each face (+x, -x, +y, -y,
-    /// +z, -z), each the layer of that index (render::frame::point_faces).
-    pub light_faces: [Mat4; 6],
+    /// x: lights in `lights`.
+    pub light_count: Vec4,
+    pub lights: [LightGpu; config::MAX_LIGHTS as usize],
+    /// Each shadow-map layer's world-to-clip matrix (a point light's six cube faces, +x, -x, +y,
+    /// -y, +z, -z; render::frame::shadow_layers).
+    pub light_layers: [Mat4; config::MAX_SHADOW_LAYERS as usize],
+}
+
+/// One light as the shaders read it (`LightData` in common/frame.glsl).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LightGpu {
+    /// xyz: spot or point position; w: LIGHT_*.
+    pub position: Vec4,
+    /// xyz: the way light travels.
+    pub direction: Vec4,
+    /// rgb: intensity (W/sr) or irradiance (W/m²).
+    pub color: Vec4,
+    /// x, y: inner and outer half-angle (radians); z: shadow texel size (uv); w: first layer.
+    pub cone: Vec4,
 }
 
 pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [

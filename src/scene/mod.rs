@@ -220,7 +220,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
     pub camera: Camera,
-    /// The lights that cast shadow-mapped direct light (at most one for now). Emissive
+    /// The lights that cast shadow-mapped direct light (at most MAX_LIGHTS, each with its own
+    /// shadow map). Emissive
     /// materials light the scene besides, through the radiance volume.
     pub lights: Vec<Light>,
     pub settings: Settings,
@@ -402,12 +403,15 @@ impl Scene {
             None => loaded.camera.unwrap_or_else(|| frame_bounds(&mesh.bounds)),
         };
         let lights = match file.lights.as_slice() {
-            [] if !loaded.lights.is_empty() => one_light(&mesh_path, loaded.lights, &mut warnings),
+            [] if !loaded.lights.is_empty() => first_lights(&mesh_path, loaded.lights, &mut warnings),
             [] => default_lights(&mesh, &materials),
-            [l] => vec![convert_light(path, l)?],
-            more => {
-                return Err(Error::input(path, format!("{} lights given; vct renders one shadowed light", more.len())))
+            given if given.len() > MAX_LIGHTS => {
+                return Err(Error::input(
+                    path,
+                    format!("{} lights given; vct renders at most {MAX_LIGHTS}", given.len()),
+                ))
             }
+            given => given.iter().map(|l| convert_light(path, l)).collect::<Result<Vec<_>>>()?,
         };
         let settings = Settings {
             voxel_resolution: file.voxels.resolution,
@@ -434,7 +438,7 @@ impl Scene {
         let lights = if g.lights.is_empty() {
             default_lights(&g.mesh, &g.materials)
         } else {
-            one_light(path, g.lights, &mut warnings)
+            first_lights(path, g.lights, &mut warnings)
         };
         let settings = Settings { voxel_resolution: 128, shadow_resolution: 2048, gi: GiSettings::default() };
         Ok(Scene {
@@ -520,16 +524,19 @@ fn load_mesh(path: &Path, read: obj::ReadFn, warnings: &mut Vec<String>) -> Resu
     Ok(LoadedMesh { mesh, materials, textures, camera: None, lights: Vec::new() })
 }
 
-/// The first of a file's lights (vct renders one shadowed light), with a warning naming the rest.
-fn one_light(path: &Path, mut lights: Vec<Light>, warnings: &mut Vec<String>) -> Vec<Light> {
-    if lights.len() > 1 {
+/// Lights a scene may have, each with its own shadow map.
+pub const MAX_LIGHTS: usize = crate::config::MAX_LIGHTS as usize;
+
+/// The first MAX_LIGHTS of a file's lights, with a warning naming how many more it has.
+fn first_lights(path: &Path, mut lights: Vec<Light>, warnings: &mut Vec<String>) -> Vec<Light> {
+    if lights.len() > MAX_LIGHTS {
         warnings.push(format!(
-            "{}: {} lights; vct renders one shadowed light, the first (the other {} are not rendered)",
+            "{}: {} lights; vct renders the first {MAX_LIGHTS} (the other {} are not rendered)",
             path.display(),
             lights.len(),
-            lights.len() - 1
+            lights.len() - MAX_LIGHTS
         ));
-        lights.truncate(1);
+        lights.truncate(MAX_LIGHTS);
     }
     lights
 }
