@@ -28,10 +28,7 @@ layout(set = 1, binding = 8) uniform sampler3D radiance_chain;
 #include "level0.glsl"
 
 #include "gather.glsl"
-
-vec3 unpack_unit(uint p) {
-    return vec3(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
-}
+#include "lit_side.glsl"
 
 void main() {
     if (gl_GlobalInvocationID.x >= occupied.count) return;
@@ -41,8 +38,9 @@ void main() {
     uint a = imageLoad(voxel_albedo, t).r;
     vec4 own = imageLoad(injected, t);
     uint side = imageLoad(lit_side, t).r;
-    bool lit = (side >> 24) != 0u;
-    vec3 n = lit ? unpack_unit(side) : unpack_unit(imageLoad(voxel_normal, t).r);
+    bool lit = has_lit_side(side);
+    // (A voxel normal packs as a side does.)
+    vec3 n = lit_side_of(lit ? side : imageLoad(voxel_normal, t).r);
     if (dot(n, n) < 1e-6) {
         imageStore(bounced, t, own);
         return;
@@ -69,7 +67,6 @@ void main() {
     }
     imageStore(bounced, t, vec4(own.rgb + albedo * gathered.rgb, own.a));
     if (!lit) {
-        uvec3 q = uvec3(round((n * 0.5 + 0.5) * 255.0));
-        imageStore(lit_side, t, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
+        imageStore(lit_side, t, uvec4(pack_lit_side(n, 1u)));
     }
 }

@@ -11,6 +11,7 @@
 // The chains live in one atlas (render::radiance::AtlasLayout): each reads and writes its own
 // block, stacked along one axis.
 #include "config.h"
+#include "lit_side.glsl"
 #define OCCUPIED_SET 0
 #define OCCUPIED_BINDING 3
 #include "listed.glsl"
@@ -51,8 +52,8 @@ vec4 child(ivec3 v, vec3 dir, ivec3 first) {
     if (push.base == 0u) return imageLoad(src, in_block(v, push.src_at));
     vec4 c = imageLoad(src, first + (v & 1));
     uint side = imageLoad(lit_side, first + (v & 1)).r;
-    if ((side >> 24) == 0u) return c;
-    vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
+    if (!has_lit_side(side)) return c;
+    vec3 n = lit_side_of(side);
     return vec4(c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), c.a);
 }
 

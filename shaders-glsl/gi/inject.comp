@@ -7,14 +7,18 @@
 // the voxel normal turned towards the light, which the anisotropic filter uses to keep a lit
 // face dark when seen from behind (a Lambertian face reflects into its own hemisphere only),
 // and around which the voxel-space bounce gathers.
-// With several lights the pass runs once per light over its own shadow-map layers; the voxel a
-// texel finds gets the light of every light (this one seen by its texel, each other one where
-// its shadow map sees the voxel's lit face), so each write is the same whichever light's texel
-// lands last, and the lit side faces the light that gives the most.
+// With several lights each voxel must get the sum of what each light alone gives it, so which
+// voxels a light lights must not depend on the others. The pass then runs twice over every
+// light's texels: INJECT_MARK sets, for each voxel a light's texels find, that light's bit in
+// the voxel's lit_side word (bits 24..31, an atomic or); INJECT_GATHER then writes, at each
+// found voxel, the light of every light whose bit is set, the same value whichever texel lands
+// last (the bits no longer change), its lit side facing the light that gives the most. One light
+// needs no marks (INJECT_ONE): its texels are what finds its voxels.
 #define VCT_OWN_PUSH
 #include "frame.glsl"
 #include "light.glsl"
 #include "rgb9e5.glsl"
+#include "lit_side.glsl"
 
 layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
 // One layer, or a point light's six cube faces (the dispatch's z).
@@ -23,30 +27,18 @@ layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_albedo;
 layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
 layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
 layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
-layout(set = 1, binding = 5, r32ui) uniform writeonly uimage3D lit_side;
+layout(set = 1, binding = 5, r32ui) uniform uimage3D lit_side;
 #define BRICKS_SET 1
 #define BRICKS_BINDING 6
 #include "bricks.glsl"
 // One thread per `stride` x `stride` block of texels, reading its centre texel (render::inject:
 // the stride keeps INJECT_TEXELS_PER_VOXEL texels per voxel where the map has more).
-layout(push_constant) uniform Push { uint stride; uint light; } push;
+layout(push_constant) uniform Push { uint stride; uint light; uint phase; } push;
 
 const float PI = 3.14159265358979;
 
 vec4 unpack(uint p) {
     return vec4(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu), float(p >> 24)) / 255.0;
-}
-
-// Whether light `k`'s shadow map sees point `q` (one texel, depth compared).
-bool sees(int k, vec3 q) {
-    int layer;
-    vec4 clip = shadow_view_proj(k, q, layer) * vec4(q, 1.0);
-    if (clip.w <= 0.0) return false;
-    vec3 ndc = clip.xyz / clip.w;
-    vec2 uv = ndc.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
-    ivec2 size = textureSize(shadow_depth, 0).xy;
-    return ndc.z <= texelFetch(shadow_depth, ivec3(ivec2(uv * vec2(size)), layer), 0).r + 1e-4;
 }
 
 void main() {
@@ -95,6 +87,11 @@ void main() {
         a = imageLoad(voxel_albedo, t).r;
         if ((a >> 24) == 0u) return;
     }
+    if (push.phase == INJECT_MARK) {
+        imageAtomicOr(lit_side, t, 1u << (24 + j));
+        return;
+    }
+    uint lights = push.phase == INJECT_ONE ? 1u << j : imageLoad(lit_side, t).r >> 24;
     vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
     vec3 normal = unpack(imageLoad(voxel_normal, t).r).xyz * 2.0 - 1.0;
     vec3 albedo = unpack(a).rgb;
@@ -102,12 +99,9 @@ void main() {
     vec3 reflected = vec3(0.0), brightest = vec3(0.0);
     float most = -1.0;
     for (int k = 0; k < light_count(); k++) {
+        if ((lights & (1u << k)) == 0u) continue;
         vec3 l;
         vec3 irradiance = light_incident(k, centre, l);
-        // Another light: where its shadow map sees the voxel's face towards it (moved out of the
-        // surface by most of a voxel, clear of the shadow map's own bias).
-        vec3 side = oriented ? normalize(normal) * (dot(normal, l) < 0.0 ? -1.0 : 1.0) : l;
-        if (k != j && !sees(k, centre + side * 0.75 * frame.voxel_origin.w)) continue;
         float cos_theta = oriented ? abs(dot(normalize(normal), l)) : 1.0;
         vec3 r = albedo / PI * irradiance * cos_theta;
         reflected += r;
@@ -117,12 +111,10 @@ void main() {
             brightest = l;
         }
     }
-    vec3 l = brightest;
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, t).r);
     imageStore(target, t, vec4(emission + reflected, 1.0));
-    if (length(normal) > 1e-3) {
-        vec3 side = normalize(normal) * (dot(normal, l) < 0.0 ? -1.0 : 1.0);
-        uvec3 q = uvec3(round((side * 0.5 + 0.5) * 255.0));
-        imageStore(lit_side, t, uvec4(q.x | (q.y << 8) | (q.z << 16) | (1u << 24)));
-    }
+    // The lights' bits stay (every gathering texel reads them); a voxel with no normal keeps
+    // none of a side (lit_side.glsl).
+    vec3 side = oriented ? normalize(normal) * (dot(normal, brightest) < 0.0 ? -1.0 : 1.0) : vec3(-1.0);
+    imageStore(lit_side, t, uvec4(pack_lit_side(side, lights)));
 }

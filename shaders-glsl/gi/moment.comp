@@ -8,6 +8,7 @@
 // level 0 took as much memory as the radiance's.
 #include "config.h"
 #include "rgb9e5.glsl"
+#include "lit_side.glsl"
 #define OCCUPIED_SET 0
 #define OCCUPIED_BINDING 4
 #include "listed.glsl"
@@ -30,8 +31,8 @@ vec4 voxel_moment(ivec3 v) {
     float total = dot(imageLoad(radiance, stored_at(v)).rgb, LUMA);
     uint side = imageLoad(lit_side, stored_at(v)).r;
     vec3 m = vec3(0.0);
-    if ((side >> 24) != 0u) {
-        vec3 n = vec3(float(side & 0xffu), float((side >> 8) & 0xffu), float((side >> 16) & 0xffu)) / 255.0 * 2.0 - 1.0;
+    if (has_lit_side(side)) {
+        vec3 n = lit_side_of(side);
         float emitted = dot(decode_rgb9e5(imageLoad(voxel_emission, stored_at(v)).r), LUMA);
         m = normalize(n) * max(total - emitted, 0.0);
     }

@@ -16,7 +16,7 @@ use ash::vk;
 
 use super::radiance::RadianceVolume;
 use super::shadow::ShadowPass;
-use crate::config::WORKGROUP_2D;
+use crate::config::{INJECT_GATHER, INJECT_MARK, INJECT_ONE, WORKGROUP_2D};
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
 use crate::scene::gpu::SceneGpu;
@@ -35,8 +35,8 @@ pub struct InjectPass {
     /// Each light's shadow-map layers (the dispatch's z, one dispatch per light).
     light_layers: Vec<u32>,
     shadow_resolution: u32,
-    /// Injection reads every `stride`-th texel along each axis.
-    pub stride: u32,
+    /// Injection reads every `stride`-th texel of a light's map along each axis (one a light).
+    strides: Vec<u32>,
     /// The resolve runs over the occupied voxels (the target cleared first).
     listed: bool,
 }
@@ -57,7 +57,7 @@ impl InjectPass {
         shadow: &ShadowPass,
         voxels: &VoxelVolume,
         radiance: &RadianceVolume,
-        stride: u32,
+        strides: Vec<u32>,
         listed: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
@@ -113,7 +113,7 @@ impl InjectPass {
             "inject",
             Stage::new(c, shaders::GI_INJECT_COMP).spec(&bricks.spec(0)),
             &[scene.set.layout, inject_set.layout],
-            8,
+            12,
         )?;
         Ok(InjectPass {
             ctx: ctx.clone(),
@@ -125,7 +125,7 @@ impl InjectPass {
             dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
             light_layers: shadow.light_layers.clone(),
-            stride,
+            strides,
             listed,
         })
     }
@@ -153,13 +153,24 @@ impl InjectPass {
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         if light {
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
-            let s = self.shadow_resolution.div_ceil(self.stride);
             // One dispatch per light, one z per layer of its shadow map (a point light's six
-            // cube faces). Each writes the light of all the lights to the voxels it finds, the
-            // same value whichever lands last: no ordering between the dispatches is needed.
-            for (light, &layers) in self.light_layers.iter().enumerate() {
-                self.inject.push(cmd, &[self.stride, light as u32]);
-                gpu::dispatch(ctx, cmd, [s, s, layers], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+            // cube faces). One light writes its voxels at once. Several first mark which
+            // voxels each finds, then each writes to its voxels the light of all the lights
+            // that found them: a voxel's value is then the sum of what each light alone gives
+            // it, the same whichever dispatch lands last (inject.comp).
+            let dispatch_all = |phase: u32| {
+                for (light, (&layers, &stride)) in self.light_layers.iter().zip(&self.strides).enumerate() {
+                    let s = self.shadow_resolution.div_ceil(stride);
+                    self.inject.push(cmd, &[stride, light as u32, phase]);
+                    gpu::dispatch(ctx, cmd, [s, s, layers], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+                }
+            };
+            if self.light_layers.len() == 1 {
+                dispatch_all(INJECT_ONE);
+            } else {
+                dispatch_all(INJECT_MARK);
+                gpu::memory_barrier(ctx, cmd, r, r);
+                dispatch_all(INJECT_GATHER);
             }
             gpu::memory_barrier(ctx, cmd, w, r);
         }

@@ -282,13 +282,13 @@ impl Renderer {
         let aniso = gi.filter == Filter::Aniso;
         let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal, chains)?;
         let occupied = &voxels.occupied;
-        let texel = scene
-            .lights
-            .first()
+        // Each light's own stride, from its own shadow texels: a light's injection must not
+        // depend on the other lights.
+        let texels: Vec<f32> = (scene.lights.iter())
             .map(|l| shadow_texel_size(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
-            .unwrap_or(0.0);
-        let stride = inject::injection_stride(texel, grid.voxel, options.inject_texels);
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, stride, listed)?;
+            .collect();
+        let strides = texels.iter().map(|&t| inject::injection_stride(t, grid.voxel, options.inject_texels)).collect();
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none();
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed, fixed)?;
@@ -315,6 +315,7 @@ impl Renderer {
                 grid.dims_label()
             ));
         }
+        let texel = texels.iter().copied().fold(0.0, f32::max);
         if texel > 0.7 * grid.voxel {
             notes.push(format!(
                 "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m; lit voxels may be missed during injection (raise shadow.resolution)",
