@@ -166,6 +166,11 @@ fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
         (&["render", "--res", "auto", "--dims", "64,64,64", "--out", o][..], 1, "--dims"),
         (&["render", "--bricks", "0", "--out", o][..], 2, "--bricks"),
         (&["render", "--res", "32", "--bricks", "4", "--out", o][..], 1, "brick pool is full"),
+        // The point voxelizer's density: positive, finite, and not so many points that the
+        // buffer would pass MAX_POINTS.
+        (&["voxelize", "--voxelizer", "points", "--point-density", "0", "--view", o][..], 1, "--point-density"),
+        (&["voxelize", "--voxelizer", "points", "--point-density", "NaN", "--view", o][..], 1, "--point-density"),
+        (&["voxelize", "--voxelizer", "points", "--point-density", "1000", "--res", "512", "--view", o][..], 1, "point-density"),
         // A dense 512³ grid's occupied-voxel list passes lavapipe's largest storage buffer.
         (&["voxelize", "--res", "512", "--storage", "dense", "--view", o][..], 1, "largest storage buffer"),
     ] {

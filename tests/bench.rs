@@ -1,5 +1,6 @@
-//! Issue "Benchmarks": `vct bench --quick` (the CI smoke run) writes CSV, JSON and the six
-//! charts, with the expected columns and one row per configuration.
+//! Issue "Benchmarks": `vct bench --quick` (the CI smoke run) writes CSV, JSON and the
+//! charts, with the expected columns and one row per configuration, the point voxelizer's
+//! density sweep among them.
 
 #[test]
 fn quick_bench_writes_csv_json_and_charts() {
@@ -16,14 +17,14 @@ fn quick_bench_writes_csv_json_and_charts() {
     let mut lines = csv.lines();
     assert_eq!(lines.next().unwrap(), vct::bench::CSV_HEADER);
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    // Cornell × {32, 64} × {tess, raster-msaa, raster-none, raster-conservative (, raster-hw
-    // where offered)} with the default storage, and raster-conservative with the others
+    // Cornell × {32, 64} × {tess, raster-msaa, raster-none, raster-conservative, points (,
+    // raster-hw where offered)} with the default storage, and raster-conservative with the others
     // offered: dense (and the pool beside residency where that is the default).
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     let stored = json["default_storage"].as_str().unwrap();
     let others = if stored == "resident" { 4 } else { 2 };
-    assert!(rows.len() == 8 + others || rows.len() == 10 + others, "{} rows:\n{csv}", rows.len());
+    assert!(rows.len() == 10 + others || rows.len() == 12 + others, "{} rows:\n{csv}", rows.len());
     let cols = vct::bench::CSV_HEADER.split(',').count();
     for r in &rows {
         assert_eq!(r.len(), cols);
@@ -34,7 +35,7 @@ fn quick_bench_writes_csv_json_and_charts() {
         assert!(num("total_ms") > 0.0 && num("voxelize_ms") > 0.0, "{r:?}");
         assert!((0.9..=1.0).contains(&num("iou")) && (0.0..1.0).contains(&num("flip")), "{r:?}");
     }
-    for (label, n) in [("tess", 32), ("raster-msaa", 64), ("raster-none", 64)] {
+    for (label, n) in [("tess", 32), ("raster-msaa", 64), ("raster-none", 64), ("points", 32), ("points", 64)] {
         assert!(rows.iter().any(|r| r[2] == label && r[3] == n.to_string()), "no {label} {n} row");
     }
     // Dense storage beside the default (the pool; residency on a device that offers it, which
@@ -53,7 +54,20 @@ fn quick_bench_writes_csv_json_and_charts() {
         assert!((f(s, "flip") - f(d, "flip")).abs() <= 0.005, "{s:?} {d:?}");
     }
     assert_eq!(json["rows"].as_array().unwrap().len(), rows.len());
-    assert!(json["triangle_sweep"].as_array().unwrap().len() >= 6);
+    // Three voxelizers (tess, raster-msaa, points) over three triangle counts.
+    assert!(json["triangle_sweep"].as_array().unwrap().len() >= 9);
+    // The point voxelizer's density sweep at 32³: without refinement, recall grows with the
+    // density; precision stays exact (a point lies on its triangle).
+    let sweep = json["density_sweep"].as_array().unwrap();
+    assert_eq!(sweep.len(), 2 * vct::bench::points::QUICK_DENSITIES.len());
+    let recall = |refine: bool, density: f64| {
+        let d = sweep.iter().find(|d| d["refine"] == refine && d["density"].as_f64() == Some(density)).unwrap();
+        assert_eq!(d["row"]["precision"].as_f64(), Some(1.0), "{d}");
+        d["row"]["recall"].as_f64().unwrap()
+    };
+    let [low, high] = vct::bench::points::QUICK_DENSITIES.map(|d| d as f64);
+    assert!(recall(false, high) > recall(false, low), "{sweep:?}");
+    assert!(recall(true, low) >= recall(false, low), "{sweep:?}");
     assert!(!json["device"].as_str().unwrap().is_empty());
     for chart in [
         "voxelize_time",
@@ -62,6 +76,8 @@ fn quick_bench_writes_csv_json_and_charts() {
         "cost_vs_triangles",
         "storage_memory_vs_flip",
         "storage_time_vs_flip",
+        "points_density",
+        "flip_against_recall",
     ] {
         for ext in ["png", "svg"] {
             let p = out.join(format!("{chart}.{ext}"));

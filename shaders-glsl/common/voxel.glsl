@@ -10,6 +10,7 @@ layout(set = 2, binding = 0) uniform VoxelParams {
     uvec4 grid;         // x: the longest axis N (the raster framebuffer is N x N); y: flags (VOXEL_FLAG_*)
     vec4 tess;          // x: tessellation level scale; y: max tessellation level; z: raster viewport scale
     uvec4 dims;         // xyz: voxels along each axis
+    mat4 camera;        // world to clip: the view the point voxelizer's refinement sees
 } voxel;
 
 // Whether voxel `coord` lies inside the grid.

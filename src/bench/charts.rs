@@ -44,6 +44,7 @@ fn colour_of(voxelizer: &str) -> RGBColor {
         "tess" => PALETTE[0],
         "raster-msaa" => PALETTE[1],
         "raster-none" => PALETTE[2],
+        "points" => PALETTE[4],
         _ => PALETTE[3],
     }
 }
@@ -307,6 +308,7 @@ pub fn draw_all(dir: &Path, all: &Results, before: Option<&Results>) -> Result<V
     if !ratio.series.is_empty() {
         files.extend(draw_named(dir, &ratio.name, &ratio)?);
     }
+    files.extend(super::points::draw(dir, r)?);
     Ok(files)
 }
 

@@ -9,6 +9,7 @@ pub mod auto;
 pub mod charts;
 pub mod hostile;
 pub mod occupancy;
+pub mod points;
 pub mod stability;
 
 use std::collections::hash_map::DefaultHasher;
@@ -44,6 +45,9 @@ pub struct BenchOptions {
     /// Storage modes beside the default one, run with the default voxelizer where the device
     /// offers them (e.g. dense, to chart memory and time against FLIP per mode).
     pub compare_storage: Vec<Storage>,
+    /// The point voxelizer's densities swept at the first resolution, with and without its
+    /// refinement (points per voxel area).
+    pub point_densities: Vec<f32>,
 }
 
 /// One configuration's figures.
@@ -98,6 +102,9 @@ pub struct Results {
     pub references: Vec<ReferenceInfo>,
     pub rows: Vec<Row>,
     pub triangle_sweep: Vec<TriangleRow>,
+    /// The point voxelizer at several densities (absent in runs before it).
+    #[serde(default)]
+    pub density_sweep: Vec<points::DensityRow>,
     /// The default storage on the device (`auto` resolved; absent in runs before residency,
     /// whose first rows ran the default: see [`Results::stored`]).
     #[serde(default)]
@@ -123,14 +130,15 @@ fn dense_label() -> String {
 }
 
 /// The voxelizers a device can run: tessellation, rasterized with MSAA, without, and
-/// conservative by a grown triangle, and hardware-conservative rasterization where the
-/// extension is offered.
+/// conservative by a grown triangle, sample points at the default density, and
+/// hardware-conservative rasterization where the extension is offered.
 pub fn methods(ctx: &Context) -> Vec<VoxelizeMethod> {
     let mut m = vec![
         VoxelizeMethod::tess(),
         VoxelizeMethod::raster(Coverage::Msaa),
         VoxelizeMethod::raster(Coverage::None),
         VoxelizeMethod::raster(Coverage::Conservative),
+        VoxelizeMethod::points(),
     ];
     if ctx.info.features.conservative_rasterization {
         m.push(VoxelizeMethod::raster(Coverage::Hardware));
@@ -226,9 +234,9 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     let methods = methods(ctx);
     let mut rows = Vec::new();
     let mut references = Vec::new();
+    let mut density_sweep = Vec::new();
     for (name, scene) in &opts.scenes {
         let (reference, info) = reference_cached(scene, name, 1, opts.reference_spp, &opts.cache_dir, progress)?;
-        let ref_rgb = metrics::tonemap(&reference);
         references.push(info);
         let default_method = RenderOptions::default().method;
         // The default storage for every voxelizer; the others (those the device offers) with the
@@ -244,42 +252,19 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
             for &(method, storage) in &configs {
                 progress(&format!("{name} {} {res}³, {} storage", method.label(), storage.label()));
                 let options = RenderOptions { method, resolution: Some(res), storage, ..Default::default() };
-                let renderer = Renderer::new(ctx, scene.clone(), options)?;
-                for _ in 0..opts.warmup {
-                    renderer.render()?;
+                rows.push(measure(ctx, opts, name, scene, &reference, options)?);
+            }
+        }
+        // The point voxelizer's density, with and without refinement, at the first resolution.
+        if let Some(&res) = opts.resolutions.first() {
+            for &refine in &[false, true] {
+                for &density in &opts.point_densities {
+                    let method = VoxelizeMethod::Points { density, refine };
+                    progress(&format!("{name} points at {density} per voxel area, refinement {refine}, {res}³"));
+                    let options = RenderOptions { method, resolution: Some(res), storage: stored, ..Default::default() };
+                    let row = measure(ctx, opts, name, scene, &reference, options)?;
+                    density_sweep.push(points::DensityRow { density, refine, row });
                 }
-                let runs: Vec<Vec<Timing>> =
-                    (0..opts.frames.max(1)).map(|_| renderer.render()).collect::<Result<_>>()?;
-                let passes = median(&runs);
-                let totals: Vec<f64> =
-                    runs.iter().filter_map(|r| r.iter().find(|t| t.pass == "total").map(|t| t.ms)).collect();
-                let get = |p: &str| passes.iter().find(|t| t.pass == p).map(|t| t.ms).unwrap_or(0.0);
-                let frame = renderer.read_frame()?;
-                let (flip, _) = metrics::flip(&ref_rgb, &frame.rgb8(), frame.width, frame.height);
-                let rmse = metrics::rmse(&reference, &frame.linear());
-                let acc = voxel_accuracy(scene, &renderer)?;
-                let memory = renderer.memory();
-                rows.push(Row {
-                    scene: name.clone(),
-                    triangles: scene.mesh.triangle_count(),
-                    voxelizer: method.label(),
-                    resolution: res,
-                    dims: memory.dims,
-                    memory_mib: memory.mib(),
-                    cube_memory_mib: memory.cube_mib(),
-                    storage: renderer.voxels.bricks.storage.label().into(),
-                    frames: opts.frames,
-                    total_ms: get("total"),
-                    total_min_ms: totals.iter().cloned().fold(f64::INFINITY, f64::min),
-                    total_max_ms: totals.iter().cloned().fold(0.0, f64::max),
-                    voxelize_ms: get("voxelize"),
-                    passes,
-                    recall: acc.recall,
-                    precision: acc.precision,
-                    iou: acc.iou,
-                    flip,
-                    rmse,
-                });
             }
         }
     }
@@ -289,7 +274,8 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         for k in 0..=opts.subdivisions {
             let mut s = scene.clone();
             s.mesh = subdivide_uniform(&scene.mesh, k);
-            for method in &methods[..2] {
+            let swept = [VoxelizeMethod::tess(), VoxelizeMethod::raster(Coverage::Msaa), VoxelizeMethod::points()];
+            for method in &swept {
                 progress(&format!("{name} ×4^{k} triangles, {}", method.label()));
                 let run = headless::voxelize(ctx, &s, *method, res, opts.frames.max(1))?;
                 triangle_sweep.push(TriangleRow {
@@ -312,6 +298,54 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         rows,
         default_storage: Some(Storage::default().resolve(ctx, false).label().into()),
         triangle_sweep,
+        density_sweep,
+    })
+}
+
+/// Renders `scene` with `options` (warm-up, then timed frames) and measures the frame against
+/// the path-traced `reference` and the voxels against the exact coverage.
+fn measure(
+    ctx: &Arc<Context>,
+    opts: &BenchOptions,
+    name: &str,
+    scene: &Scene,
+    reference: &[Vec3],
+    options: RenderOptions,
+) -> Result<Row> {
+    let (method, res) = (options.method, options.resolution.unwrap_or(0));
+    let renderer = Renderer::new(ctx, scene.clone(), options)?;
+    for _ in 0..opts.warmup {
+        renderer.render()?;
+    }
+    let runs: Vec<Vec<Timing>> = (0..opts.frames.max(1)).map(|_| renderer.render()).collect::<Result<_>>()?;
+    let passes = median(&runs);
+    let totals: Vec<f64> = runs.iter().filter_map(|r| r.iter().find(|t| t.pass == "total").map(|t| t.ms)).collect();
+    let get = |p: &str| passes.iter().find(|t| t.pass == p).map(|t| t.ms).unwrap_or(0.0);
+    let frame = renderer.read_frame()?;
+    let (flip, _) = metrics::flip(&metrics::tonemap(reference), &frame.rgb8(), frame.width, frame.height);
+    let rmse = metrics::rmse(reference, &frame.linear());
+    let acc = voxel_accuracy(scene, &renderer)?;
+    let memory = renderer.memory();
+    Ok(Row {
+        scene: name.into(),
+        triangles: scene.mesh.triangle_count(),
+        voxelizer: method.label(),
+        resolution: res,
+        dims: memory.dims,
+        memory_mib: memory.mib(),
+        cube_memory_mib: memory.cube_mib(),
+        storage: renderer.voxels.bricks.storage.label().into(),
+        frames: opts.frames,
+        total_ms: get("total"),
+        total_min_ms: totals.iter().cloned().fold(f64::INFINITY, f64::min),
+        total_max_ms: totals.iter().cloned().fold(0.0, f64::max),
+        voxelize_ms: get("voxelize"),
+        passes,
+        recall: acc.recall,
+        precision: acc.precision,
+        iou: acc.iou,
+        flip,
+        rmse,
     })
 }
 
@@ -430,5 +464,6 @@ pub fn summary(r: &Results) -> String {
     for t in &r.triangle_sweep {
         s.push_str(&format!("| {} | {} | {} | {:.2} |\n", t.scene, t.voxelizer, t.triangles, t.voxelize_ms));
     }
+    s.push_str(&points::summary(r));
     s
 }

@@ -85,9 +85,17 @@ pub fn tessellation_limit(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
             points,
         });
     }
+    // The point voxelizer gives a large triangle as many points as its area asks for.
+    let mut points = Vec::new();
+    for &s in sizes {
+        let t = [Vec3::new(3.5, 3.5, 61.5), Vec3::new(3.5 + s, 3.5, 61.5), Vec3::new(3.5, 3.5 + s, 61.5)];
+        let scene = Scene::from_triangles(&[(t, 0)], &[Vec3::splat(0.8)]);
+        points.push((s as f64, recall(ctx, &scene, VoxelizeMethod::points(), unit_grid(128))?));
+    }
+    series.push(Series { label: VoxelizeMethod::points().label(), points });
     Ok(Regime {
         name: "tess_limit".into(),
-        title: "1. Tessellation level limit".into(),
+        title: "1. Large triangles: the tessellation level limit".into(),
         x: "triangle leg (voxels)".into(),
         y: "recall".into(),
         log_x: false,
@@ -128,6 +136,7 @@ pub fn subvoxel_triangles(ctx: &Arc<Context>, sizes: &[f32]) -> Result<Regime> {
         VoxelizeMethod::raster(Coverage::Msaa),
         VoxelizeMethod::raster(Coverage::None),
         VoxelizeMethod::raster(Coverage::Conservative),
+        VoxelizeMethod::points(),
     ];
     for m in methods {
         series.push(Series { label: m.label(), points: Vec::new() });

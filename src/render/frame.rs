@@ -85,15 +85,7 @@ pub struct FrameState<'a> {
     pub previous_origin: Vec3,
 }
 
-/// Near and far planes that contain the scene bounds seen from `eye`.
-pub fn depth_range(eye: Vec3, bounds: &Aabb) -> (f32, f32) {
-    if bounds.is_empty() {
-        return (0.01, 100.0);
-    }
-    let far = (bounds.center() - eye).length() + bounds.size().length() * 0.5;
-    let far = far.max(1e-3) * 1.01;
-    (far * 1e-3, far)
-}
+pub use crate::scene::depth_range;
 
 /// The six faces of a point light's cube shadow map at `position`: each a 90° frustum along
 /// +x, -x, +y, -y, +z, -z (the layer of the same index), reaching the bounds' far side.
@@ -152,7 +144,6 @@ impl FrameUniforms {
     /// `lights`: the shadowed lights (emitters light the scene besides); at most MAX_LIGHTS,
     /// with MAX_SHADOW_LAYERS layers in all (scene loading enforces both).
     pub fn new(camera: &Camera, lights: &[Light], bounds: &Aabb, shadow_resolution: u32, f: &FrameState) -> Self {
-        let (near, far) = depth_range(camera.eye, bounds);
         let mut gpu_lights = [LightGpu::default(); config::MAX_LIGHTS as usize];
         let mut light_layers = [Mat4::IDENTITY; config::MAX_SHADOW_LAYERS as usize];
         let mut layer = 0usize;
@@ -187,7 +178,7 @@ impl FrameUniforms {
                 layer += 1;
             }
         }
-        let view_proj = camera.proj(near, far) * camera.view();
+        let view_proj = camera.view_proj(bounds);
         let level = match f.view {
             View::Radiance(l) => l.min(f.mip_levels.saturating_sub(1)),
             _ => 0,

@@ -365,6 +365,7 @@ impl Renderer {
         };
         let u = FrameUniforms::new(&s.camera, &s.lights, &s.mesh.bounds, s.settings.shadow_resolution, &state);
         self.scene_gpu.uniforms.write_pod(&u);
+        self.voxelizer.set_camera(u.view_proj);
     }
 
     /// Records one whole frame. The passes, in order:

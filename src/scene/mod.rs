@@ -139,7 +139,22 @@ pub fn flip_y(proj: Mat4) -> Mat4 {
     Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0)) * proj
 }
 
+/// Near and far planes that contain the scene bounds seen from `eye`.
+pub fn depth_range(eye: Vec3, bounds: &Aabb) -> (f32, f32) {
+    if bounds.is_empty() {
+        return (0.01, 100.0);
+    }
+    let far = (bounds.center() - eye).length() + bounds.size().length() * 0.5;
+    let far = far.max(1e-3) * 1.01;
+    (far * 1e-3, far)
+}
+
 impl Camera {
+    /// World to clip space, with depth planes around `bounds` ([`depth_range`]).
+    pub fn view_proj(&self, bounds: &Aabb) -> Mat4 {
+        let (near, far) = depth_range(self.eye, bounds);
+        self.proj(near, far) * self.view()
+    }
     pub fn view(&self) -> Mat4 {
         Mat4::look_at_rh(self.eye, self.target, self.up)
     }

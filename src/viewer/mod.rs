@@ -21,7 +21,6 @@ use crate::gpu::{self, Context, ContextOptions, FrameOutcome, Swapchain, Timing}
 use crate::render::overlay::OverlayPass;
 use crate::render::{RenderOptions, Renderer, View};
 use crate::scene::Scene;
-use crate::voxel::{Coverage, VoxelizeMethod};
 use camera::{light_step, swing_light, CameraController, Input, Mode};
 
 pub const HELP: &str = "\
@@ -31,7 +30,7 @@ vct viewer keys:
   right mouse    look around (fly)      left mouse  orbit (orbit mode)   wheel  zoom
   O              toggle fly / orbit around the scene centre
   arrow keys     swing the light's direction (the GI follows)
-  V              switch voxelizer (tessellation / rasterized)
+  V              switch voxelizer (rasterized / tessellation / points)
   C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, radiance:0..3
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
@@ -314,10 +313,7 @@ impl App {
                 println!("camera: {}", if r.camera.mode == Mode::Fly { "fly" } else { "orbit" });
             }
             KeyCode::KeyV => {
-                options.method = match options.method {
-                    VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Conservative),
-                    VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
-                };
+                options.method = options.method.next();
                 println!("voxelizer: {}", options.method.label());
                 Self::rebuild(r, options)?;
             }
@@ -381,10 +377,7 @@ impl App {
         }
         if frame > 0 && frame.is_multiple_of(60) {
             let mut o = r.renderer.options;
-            o.method = match o.method {
-                VoxelizeMethod::Tess { .. } => VoxelizeMethod::raster(Coverage::Conservative),
-                VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
-            };
+            o.method = o.method.next();
             Self::rebuild(r, o)?;
         }
         if frame > 0 && frame.is_multiple_of(90) {

@@ -1,12 +1,14 @@
-//! Voxelization (Freed 2018 §4.1) two ways, as siblings behind [`VoxelizeMethod`]: the
-//! tessellation path ([`tess`]) and the rasterized path ([`raster`]). Each declares the device
-//! features it needs; both write the same [`VoxelVolume`].
+//! Voxelization (Freed 2018 §4.1) three ways, as siblings behind [`VoxelizeMethod`]: the
+//! tessellation path ([`tess`]), the rasterized path ([`raster`]) and sample points scattered
+//! over the triangles ([`points`], Mavridis & Papaioannou 2011). Each declares the device
+//! features it needs; all write the same [`VoxelVolume`].
 
 pub mod binvox;
 pub mod bricks;
 pub mod grid;
 pub mod headless;
 pub mod occupied;
+pub mod points;
 pub mod raster;
 pub mod subdivide;
 pub mod tess;
@@ -59,6 +61,9 @@ pub enum VoxelizeMethod {
         /// Write every voxel layer the triangle spans within a pixel.
         depth_span: bool,
     },
+    /// Sample points over each triangle, `density` per voxel area (at least one a triangle);
+    /// `refine`: the pixels the camera sees fill the voxels the points left empty.
+    Points { density: f32, refine: bool },
 }
 
 /// Default tessellation level scale: the thesis' levels. Alone they miss voxels along
@@ -81,6 +86,9 @@ impl VoxelizeMethod {
             neighbours: DEFAULT_NEIGHBOURS,
         }
     }
+    pub fn points() -> Self {
+        VoxelizeMethod::Points { density: points::DEFAULT_POINT_DENSITY, refine: true }
+    }
     pub fn raster(coverage: Coverage) -> Self {
         VoxelizeMethod::Raster { coverage, viewport_scale: 1.0, depth_span: true }
     }
@@ -98,6 +106,31 @@ impl VoxelizeMethod {
                 }
                 f
             }
+            VoxelizeMethod::Points { refine, .. } => {
+                let mut f = vec![Feature::VertexPipelineStoresAndAtomics];
+                if *refine {
+                    f.push(Feature::FragmentStoresAndAtomics);
+                }
+                f
+            }
+        }
+    }
+
+    /// The next method in the viewer's cycle (V): raster, tessellation, points.
+    pub fn next(&self) -> Self {
+        match self {
+            VoxelizeMethod::Raster { .. } => VoxelizeMethod::tess(),
+            VoxelizeMethod::Tess { .. } => VoxelizeMethod::points(),
+            VoxelizeMethod::Points { .. } => VoxelizeMethod::raster(Coverage::Conservative),
+        }
+    }
+
+    /// What the method is called in errors, e.g. "the tessellation voxelizer".
+    pub fn noun(&self) -> &'static str {
+        match self {
+            VoxelizeMethod::Tess { .. } => "the tessellation voxelizer",
+            VoxelizeMethod::Raster { .. } => "the rasterized voxelizer",
+            VoxelizeMethod::Points { .. } => "the point voxelizer",
         }
     }
 
@@ -111,6 +144,7 @@ impl VoxelizeMethod {
                 Coverage::Hardware => "raster-hw".into(),
                 Coverage::Conservative => "raster-conservative".into(),
             },
+            VoxelizeMethod::Points { .. } => "points".into(),
         }
     }
 }
@@ -123,6 +157,8 @@ pub struct VoxelParams {
     pub grid: [u32; 4],
     pub tess: [f32; 4],
     pub dims: [u32; 4],
+    /// World to clip space of the view the point voxelizer refines (points::Refine).
+    pub camera: [[f32; 4]; 4],
 }
 
 /// A voxelizer's parameters and the uniform buffer that holds them.
@@ -135,7 +171,13 @@ impl ParamsUbo {
     /// Moves the grid (the volume follows the camera); the voxel size stays.
     pub fn set_origin(&mut self, grid: &VoxelGrid) {
         self.params.origin_size = grid.origin.extend(grid.voxel).into();
-        self.buffer.write_pod(&self.params);
+        self.buffer.write(std::mem::offset_of!(VoxelParams, origin_size), bytemuck::bytes_of(&self.params.origin_size));
+    }
+
+    /// The camera a refinement sees this frame (written alone: the rest may be in flight).
+    pub fn set_camera(&self, view_proj: glam::Mat4) {
+        let m = view_proj.to_cols_array_2d();
+        self.buffer.write(std::mem::offset_of!(VoxelParams, camera), bytemuck::bytes_of(&m));
     }
 }
 
@@ -186,6 +228,7 @@ pub(crate) fn params_for(
         grid: [grid.longest(), flags, 0, 0],
         dims: grid.dims.extend(0).into(),
         tess: [level_scale, max_level, viewport_scale, 0.0],
+        camera: glam::Mat4::IDENTITY.to_cols_array_2d(),
     }
 }
 
@@ -194,6 +237,7 @@ pub(crate) fn params_for(
 pub enum Voxelizer {
     Tess(tess::TessVoxelizer),
     Raster(raster::RasterVoxelizer),
+    Points(points::PointsVoxelizer),
 }
 
 impl Voxelizer {
@@ -204,14 +248,7 @@ impl Voxelizer {
         volume: &VoxelVolume,
         method: VoxelizeMethod,
     ) -> Result<Self> {
-        ctx.require(
-            &method.required_features(),
-            if matches!(method, VoxelizeMethod::Tess { .. }) {
-                "the tessellation voxelizer"
-            } else {
-                "the rasterized voxelizer"
-            },
-        )?;
+        ctx.require(&method.required_features(), method.noun())?;
         Ok(match method {
             VoxelizeMethod::Tess { level_scale, subdivide, min_level, neighbours } => Voxelizer::Tess(
                 tess::TessVoxelizer::new(ctx, scene, scene_gpu, volume, level_scale, subdivide, min_level, neighbours)?,
@@ -219,6 +256,9 @@ impl Voxelizer {
             VoxelizeMethod::Raster { coverage, viewport_scale, depth_span } => Voxelizer::Raster(
                 raster::RasterVoxelizer::new(ctx, scene_gpu, volume, coverage, viewport_scale, depth_span)?,
             ),
+            VoxelizeMethod::Points { density, refine } => {
+                Voxelizer::Points(points::PointsVoxelizer::new(ctx, scene, scene_gpu, volume, density, refine)?)
+            }
         })
     }
 
@@ -228,6 +268,7 @@ impl Voxelizer {
         match self {
             Voxelizer::Tess(t) => t.record(cmd, scene_gpu),
             Voxelizer::Raster(r) => r.record(cmd, scene_gpu, volume),
+            Voxelizer::Points(p) => p.record(cmd, scene_gpu),
         }
         volume.record_finish(cmd);
     }
@@ -237,6 +278,7 @@ impl Voxelizer {
         match self {
             Voxelizer::Tess(t) => write_volume(&t.set, volume),
             Voxelizer::Raster(r) => write_volume(&r.set, volume),
+            Voxelizer::Points(p) => write_volume(&p.set, volume),
         }
     }
 
@@ -245,6 +287,14 @@ impl Voxelizer {
         match self {
             Voxelizer::Tess(t) => t.params.set_origin(grid),
             Voxelizer::Raster(r) => r.params.set_origin(grid),
+            Voxelizer::Points(p) => p.params.set_origin(grid),
+        }
+    }
+
+    /// The camera this frame is seen from (the point voxelizer's refinement writes what it sees).
+    pub fn set_camera(&self, view_proj: glam::Mat4) {
+        if let Voxelizer::Points(p) = self {
+            p.params.set_camera(view_proj);
         }
     }
 
@@ -253,6 +303,7 @@ impl Voxelizer {
         match self {
             Voxelizer::Tess(t) => t.notes(),
             Voxelizer::Raster(_) => Vec::new(),
+            Voxelizer::Points(p) => p.notes(),
         }
     }
 }

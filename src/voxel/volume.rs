@@ -31,7 +31,9 @@ pub struct VoxelVolume {
 /// Stages and accesses of the voxelizers' writes, for barriers.
 pub fn voxel_write_scope() -> (vk::PipelineStageFlags2, vk::AccessFlags2) {
     (
-        vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER | vk::PipelineStageFlags2::FRAGMENT_SHADER,
+        vk::PipelineStageFlags2::VERTEX_SHADER
+            | vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER
+            | vk::PipelineStageFlags2::FRAGMENT_SHADER,
         vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
     )
 }

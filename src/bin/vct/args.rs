@@ -303,6 +303,7 @@ impl WorkArg {
 pub enum VoxelizerArg {
     Tess,
     Raster,
+    Points,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -359,6 +360,13 @@ pub struct MethodArgs {
     /// that the triangle meets (on|off; default: vct's).
     #[arg(long, value_enum)]
     pub neighbours: Option<OnOff>,
+    /// Point path: sample points per voxel area on each triangle (at least one a triangle).
+    #[arg(long, default_value_t = vct::voxel::points::DEFAULT_POINT_DENSITY)]
+    pub point_density: f32,
+    /// Point path: fill the voxels the points left empty where the camera looks, from the
+    /// pixels it sees (Mavridis & Papaioannou 2011 §3.2; on|off).
+    #[arg(long, value_enum, default_value = "on")]
+    pub refine: OnOff,
     /// Rasterized path: framebuffer resolution over voxel resolution.
     #[arg(long, default_value_t = 1.0)]
     pub viewport_scale: f32,
@@ -442,6 +450,12 @@ impl MethodArgs {
                 viewport_scale: self.viewport_scale,
                 depth_span: !self.no_depth_span,
             },
+            VoxelizerArg::Points => {
+                if !(self.point_density.is_finite() && self.point_density > 0.0 && self.point_density <= 1024.0) {
+                    bail!("--point-density must be in (0, 1024] points per voxel area, got {}", self.point_density);
+                }
+                VoxelizeMethod::Points { density: self.point_density, refine: self.refine == OnOff::On }
+            }
         })
     }
 }

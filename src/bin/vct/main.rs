@@ -195,6 +195,12 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
         "against exact coverage: recall {:.4}  precision {:.4}  IoU {:.4}  ({} required voxels)",
         a.recall, a.precision, a.iou, a.required
     );
+    let cam = &scene.camera;
+    let seen = RefGrid::matching(&g).visible(&triangles, cam, 1e-3).accuracy(&occupied);
+    println!(
+        "surfaces the camera sees ({}×{} pixel centres): recall {:.4}  ({} required voxels)",
+        cam.width, cam.height, seen.recall, seen.required
+    );
     if let Some(path) = &args.export {
         vct::voxel::binvox::write(path, &g, &occupied)?;
         println!("wrote {}", path.display());
@@ -427,6 +433,11 @@ fn bench(args: BenchArgs) -> Result<()> {
         frames: args.frames.unwrap_or(if args.quick { 3 } else { 5 }),
         reference_spp: args.spp.unwrap_or(if args.quick { 16 } else { 256 }),
         subdivisions: if args.quick { 2 } else { 4 },
+        point_densities: if args.quick {
+            vct::bench::points::QUICK_DENSITIES.to_vec()
+        } else {
+            vct::bench::points::DENSITIES.to_vec()
+        },
         out_dir: out.clone(),
         cache_dir: out.parent().unwrap_or(Path::new(".")).join("cache"),
         compare_storage: if args.compare_storage == OnOff::On {
