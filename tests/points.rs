@@ -10,11 +10,11 @@ use vct::bench::stability::voxel_accuracy;
 use vct::scene::Scene;
 use vct::voxel::headless::voxelize_in;
 use vct::reference::coverage::RefGrid;
-use vct::voxel::points::DEFAULT_POINT_DENSITY;
+use vct::voxel::points::{PointSource, DEFAULT_POINT_DENSITY};
 use vct::voxel::{VoxelGrid, VoxelizeMethod};
 
 fn points(density: f32) -> VoxelizeMethod {
-    VoxelizeMethod::Points { density, refine: false }
+    VoxelizeMethod::Points { density, source: PointSource::Load, refine: false }
 }
 
 fn unit_grid(n: u32) -> VoxelGrid {
@@ -35,6 +35,20 @@ fn recall_grows_with_density_and_precision_stays_exact_on_the_cornell_box() {
     for a in [sparse, dense] {
         assert!(a.precision >= 0.999, "a point wrote a voxel its triangle does not touch: {a:?}");
     }
+}
+
+#[test]
+fn points_generated_on_the_gpu_cover_as_the_scattered_ones_do() {
+    let ctx = common::context();
+    let scene = Scene::embedded_default().unwrap();
+    let grid = VoxelGrid::fit(&scene.mesh.bounds, 64).unwrap();
+    let gpu = VoxelizeMethod::Points { density: DEFAULT_POINT_DENSITY, source: PointSource::Gpu, refine: false };
+    let generated = voxel_accuracy(&ctx, &scene, gpu, grid).unwrap();
+    let scattered = voxel_accuracy(&ctx, &scene, points(DEFAULT_POINT_DENSITY), grid).unwrap();
+    common::assert_clean(&ctx);
+    println!("Cornell 64³: generated {generated:?}; scattered {scattered:?}");
+    assert_eq!(generated.precision, 1.0, "{generated:?}");
+    assert!((generated.recall - scattered.recall).abs() < 0.01, "{generated:?} against {scattered:?}");
 }
 
 #[test]
@@ -81,7 +95,7 @@ fn refinement_fills_the_holes_the_camera_would_see() {
     let exact = RefGrid::matching(&grid).coverage(&tris, 1e-3);
     // A quarter of a point per voxel area: most voxels get none.
     for (refine, lowest, highest) in [(false, 0.0, 0.5), (true, 0.99, 1.0)] {
-        let method = VoxelizeMethod::Points { density: 0.25, refine };
+        let method = VoxelizeMethod::Points { density: 0.25, source: PointSource::Load, refine };
         let run = voxelize_in(&ctx, &scene, method, grid, 1).unwrap();
         let (visible, all) = (seen.accuracy(&run.occupied()), exact.accuracy(&run.occupied()));
         println!("refinement {refine}: visible recall {:.4} ({} voxels seen); {all:?}", visible.recall, visible.required);

@@ -31,6 +31,11 @@
 // Radiance injection looks for the lit voxel up to this many voxels before the shadow-map point
 // (towards the light): the slope-scaled depth bias pushes grazing points behind their surface.
 #define INJECT_SEARCH_VOXELS 3
+// The point voxelizer generating its points on the GPU (voxel::points): vertex slots per
+// triangle, each slot one point; triangles needing more are split when the scene loads.
+#define POINTS_PER_TRIANGLE 8
+// Floats per scene vertex (scene::Vertex: position, normal, UV, tangent), read as storage.
+#define VERTEX_FLOATS 12
 // Injection's phases (render::inject): one light (INJECT_ONE), or several: each light's texels
 // mark the voxels they find (INJECT_MARK), then write the light of every light that found each
 // voxel (INJECT_GATHER).

@@ -259,7 +259,8 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         if let Some(&res) = opts.resolutions.first() {
             for &refine in &[false, true] {
                 for &density in &opts.point_densities {
-                    let method = VoxelizeMethod::Points { density, refine };
+                    let source = crate::voxel::points::DEFAULT_POINT_SOURCE;
+                    let method = VoxelizeMethod::Points { density, source, refine };
                     progress(&format!("{name} points at {density} per voxel area, refinement {refine}, {res}³"));
                     let options = RenderOptions { method, resolution: Some(res), storage: stored, ..Default::default() };
                     let row = measure(ctx, opts, name, scene, &reference, options)?;

@@ -129,6 +129,21 @@ impl MeshBuffers {
             }
         }
     }
+
+    /// Draws `slots` vertices per triangle, without vertex or index buffers (a vertex shader
+    /// that reads the mesh as storage: `gl_VertexIndex / slots` is the triangle), one draw per
+    /// material as [`MeshBuffers::draw`].
+    pub fn draw_slots(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, material_sets: &DescriptorSet, slots: u32) {
+        let d = &self.ctx.device;
+        unsafe {
+            for draw in &self.draws {
+                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(&draw.material));
+                let set = [material_sets.sets[draw.material as usize]];
+                d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, layout, 1, &set, &[]);
+                d.cmd_draw(cmd, draw.index_count / 3 * slots, 1, draw.first_index / 3 * slots, 0);
+            }
+        }
+    }
 }
 
 pub struct SceneGpu {

@@ -61,9 +61,9 @@ pub enum VoxelizeMethod {
         /// Write every voxel layer the triangle spans within a pixel.
         depth_span: bool,
     },
-    /// Sample points over each triangle, `density` per voxel area (at least one a triangle);
-    /// `refine`: the pixels the camera sees fill the voxels the points left empty.
-    Points { density: f32, refine: bool },
+    /// Sample points over each triangle, `density` per voxel area (at least one a triangle),
+    /// from `source`; `refine`: the pixels the camera sees fill the voxels the points left empty.
+    Points { density: f32, source: points::PointSource, refine: bool },
 }
 
 /// Default tessellation level scale: the thesis' levels. Alone they miss voxels along
@@ -87,7 +87,11 @@ impl VoxelizeMethod {
         }
     }
     pub fn points() -> Self {
-        VoxelizeMethod::Points { density: points::DEFAULT_POINT_DENSITY, refine: true }
+        VoxelizeMethod::Points {
+            density: points::DEFAULT_POINT_DENSITY,
+            source: points::DEFAULT_POINT_SOURCE,
+            refine: true,
+        }
     }
     pub fn raster(coverage: Coverage) -> Self {
         VoxelizeMethod::Raster { coverage, viewport_scale: 1.0, depth_span: true }
@@ -256,9 +260,9 @@ impl Voxelizer {
             VoxelizeMethod::Raster { coverage, viewport_scale, depth_span } => Voxelizer::Raster(
                 raster::RasterVoxelizer::new(ctx, scene_gpu, volume, coverage, viewport_scale, depth_span)?,
             ),
-            VoxelizeMethod::Points { density, refine } => {
-                Voxelizer::Points(points::PointsVoxelizer::new(ctx, scene, scene_gpu, volume, density, refine)?)
-            }
+            VoxelizeMethod::Points { density, source, refine } => Voxelizer::Points(
+                points::PointsVoxelizer::new(ctx, scene, scene_gpu, volume, density, source, refine)?,
+            ),
         })
     }
 

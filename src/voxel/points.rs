@@ -4,11 +4,12 @@
 //! point list) writes the voxel each point falls in, with the same averaging as the other two
 //! voxelizers. A point lies on its triangle, so every voxel it writes is one the triangle
 //! touches: precision is exact, and recall follows the density (a voxel the triangle only
-//! grazes holds little of its area and gets no point). Large triangles need no run-time
-//! amplification: a triangle simply gets as many points as its area asks for.
+//! grazes holds little of its area and gets no point).
 //!
-//! Points are generated on the CPU rather than each frame on the GPU: the scene is static, so
-//! the buffer is the same every frame, and the per-frame work is then one vertex per point.
+//! The points come from one of two sources ([`PointSource`]): scattered on the CPU when the
+//! volume is built (a buffer of one vertex a point, the default: measured faster), or generated
+//! each frame by the vertex shader from the mesh, big triangles split at load to a bounded
+//! number of points, as the paper advises, rather than amplified at run time.
 //!
 //! Refinement (§3.2, [`Refine`]): the surface the camera sees is re-projected into the volume,
 //! pixel by pixel, filling the voxels the points left empty there, so that what the camera
@@ -20,11 +21,14 @@ use std::sync::Arc;
 use ash::vk;
 use glam::{Vec2, Vec3, Vec4};
 
+use super::subdivide::subdivide_until;
 use super::volume::voxel_write_scope;
 use super::{params_for, voxel_set, ParamsUbo, VoxelGrid, VoxelVolume};
+use crate::config;
 use crate::error::{Error, Result};
 use crate::gpu::{
-    self, scope, shaders, Attachments, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Stage,
+    self, scope, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline,
+    Stage,
 };
 use crate::scene::gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
 use crate::scene::{Draw, Mesh, Scene, Vertex};
@@ -33,8 +37,8 @@ use crate::scene::{Draw, Mesh, Scene, Vertex};
 /// least one). Chosen by measurement (docs/benchmarks.md, "Point voxelizer").
 pub const DEFAULT_POINT_DENSITY: f32 = 4.0;
 
-/// More points than this is refused: the buffer would pass a few hundred MiB.
-pub const MAX_POINTS: u64 = 1 << 24;
+/// More points than this is refused: the buffer would pass 400 MiB.
+pub const MAX_POINTS: u64 = 1 << 23;
 
 /// The plastic constant's R2 sequence (Roberts 2018): well spread points in the unit square for
 /// any count, so a triangle's N points are stratified without a grid of N cells.
@@ -202,15 +206,47 @@ impl Refine {
     }
 }
 
+/// Where the sample points come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum PointSource {
+    /// Scattered on the CPU when the volume is built, into a buffer of one vertex a point.
+    Load,
+    /// Generated each frame by the vertex shader from the mesh (points_gen.vert), big
+    /// triangles split at load to POINTS_PER_TRIANGLE points at most.
+    Gpu,
+}
+
+/// The chosen source (docs/benchmarks.md, "Point voxelizer": scattering at load was faster at
+/// every size measured, for a buffer of 48 bytes a point).
+pub const DEFAULT_POINT_SOURCE: PointSource = PointSource::Load;
+
+/// The points, as each source keeps them.
+enum Points {
+    Buffer(MeshBuffers),
+    /// The mesh with its big triangles split, read as storage (set 3).
+    Generated { mesh: MeshBuffers, set: DescriptorSet },
+}
+
 pub struct PointsVoxelizer {
     ctx: Arc<Context>,
     pipeline: Pipeline,
     pub(crate) set: DescriptorSet,
     pub(crate) params: ParamsUbo,
-    points: MeshBuffers,
+    points: Option<Points>,
+    /// Points scattered at load, or triangles split for generation.
     count: usize,
     density: f32,
+    source: PointSource,
     refine: Option<Refine>,
+}
+
+const _: () = assert!(std::mem::size_of::<Vertex>() == 4 * config::VERTEX_FLOATS as usize);
+
+/// Whether a triangle of corners `p` fits the slots of the GPU source at `density` on `grid`.
+fn fits_slots(p: [Vec3; 3], grid: &VoxelGrid, density: f32) -> bool {
+    let area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
+    // With a margin: the GPU computes the area in f32 and rounds the count up.
+    area.is_nan() || points_for(area * 1.001, grid.voxel, density) <= config::POINTS_PER_TRIANGLE
 }
 
 impl PointsVoxelizer {
@@ -220,43 +256,94 @@ impl PointsVoxelizer {
         scene_gpu: &SceneGpu,
         volume: &VoxelVolume,
         density: f32,
+        source: PointSource,
         refine: bool,
     ) -> Result<Self> {
-        let points = scatter(&scene.mesh, &volume.grid, density)?;
-        let count = points.vertices.len();
-        // An empty buffer cannot be created: a scene of degenerate triangles draws nothing.
-        let points = if count == 0 {
-            MeshBuffers::new(ctx, "voxelizer points", &Mesh { vertices: vec![Vertex::default()], indices: vec![0], ..points })?
-        } else {
-            MeshBuffers::new(ctx, "voxelizer points", &points)?
-        };
-        let params = params_for(&volume.grid, 0, 1.0, 1.0, 1.0);
+        let mut params = params_for(&volume.grid, 0, 1.0, 1.0, 1.0);
+        params.tess[3] = density;
         let (set, params_buffer) = voxel_set(ctx, volume, &params)?;
         let spec = volume.bricks.spec(0);
-        let mut desc = GraphicsDesc::new(
-            "points voxelizer",
-            vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_VERT).spec(&spec)],
-        );
-        desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
-        desc.push_constant_size = 4;
-        desc.vertex = Some(vertex_layout_untangented());
-        desc.topology = vk::PrimitiveTopology::POINT_LIST;
-        desc.rasterizer_discard = true;
-        let pipeline = Pipeline::graphics(ctx, &desc)?;
+        let layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
+        let (points, count, pipeline) = match source {
+            PointSource::Load => {
+                let points = scatter(&scene.mesh, &volume.grid, density)?;
+                let count = points.vertices.len();
+                // An empty buffer cannot be created: a scene of degenerate triangles has none.
+                let points = (count > 0)
+                    .then(|| MeshBuffers::new(ctx, "voxelizer points", &points))
+                    .transpose()?
+                    .map(Points::Buffer);
+                let mut desc = GraphicsDesc::new(
+                    "points voxelizer",
+                    vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_VERT).spec(&spec)],
+                );
+                desc.set_layouts = layouts;
+                desc.vertex = Some(vertex_layout_untangented());
+                (points, count, Self::pipeline(ctx, desc)?)
+            }
+            PointSource::Gpu => {
+                if !(density.is_finite() && density > 0.0) {
+                    return Err(Error::param("point-density", format!("must be a positive number of points per voxel area, got {density}")));
+                }
+                let (mesh, _) = subdivide_until(&scene.mesh, |p| fits_slots(p, &volume.grid, density));
+                let count = mesh.triangle_count();
+                let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, vk::ShaderStageFlags::VERTEX);
+                let mesh_set = DescriptorSet::new(ctx, "points mesh", &[storage(0), storage(1)])?;
+                let mut desc = GraphicsDesc::new(
+                    "points voxelizer (generating)",
+                    vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_GEN_VERT).spec(&spec)],
+                );
+                desc.set_layouts = layouts.into_iter().chain([mesh_set.layout]).collect();
+                let points = if count > 0 {
+                    let mesh = MeshBuffers::new(ctx, "voxelizer split mesh", &mesh)?;
+                    mesh_set.write_buffer(0, vk::DescriptorType::STORAGE_BUFFER, &mesh.vertices);
+                    mesh_set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &mesh.indices);
+                    Some(Points::Generated { mesh, set: mesh_set })
+                } else {
+                    None
+                };
+                (points, count, Self::pipeline(ctx, desc)?)
+            }
+        };
         // The scene's own camera until the renderer says otherwise (a sparse pool's census
         // then sees what the first frame will).
         params_buffer.set_camera(scene.camera.view_proj(&scene.mesh.bounds));
         let refine = refine.then(|| Refine::new(ctx, scene, scene_gpu, &set, &spec)).transpose()?;
-        Ok(PointsVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, points, count, density, refine })
+        Ok(PointsVoxelizer {
+            ctx: ctx.clone(),
+            pipeline,
+            set,
+            params: params_buffer,
+            points,
+            count,
+            density,
+            source,
+            refine,
+        })
+    }
+
+    /// A point list with no rasterization: the vertex stage writes the voxels.
+    fn pipeline(ctx: &Arc<Context>, mut desc: GraphicsDesc) -> Result<Pipeline> {
+        desc.push_constant_size = 4;
+        desc.topology = vk::PrimitiveTopology::POINT_LIST;
+        desc.rasterizer_discard = true;
+        Pipeline::graphics(ctx, &desc)
     }
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu) {
-        if self.count > 0 {
+        if let Some(points) = &self.points {
             let att = Attachments { color: None, depth: None, width: 1, height: 1 };
             gpu::render(&self.ctx, cmd, att, || {
                 self.pipeline.bind(cmd, &[scene_gpu.set.raw]);
                 self.pipeline.bind_set(cmd, 2, self.set.raw);
-                self.points.draw(cmd, self.pipeline.layout, Some(&scene_gpu.material_sets));
+                match points {
+                    Points::Buffer(b) => b.draw(cmd, self.pipeline.layout, Some(&scene_gpu.material_sets)),
+                    Points::Generated { mesh, set } => {
+                        self.pipeline.bind_set(cmd, 3, set.raw);
+                        let slots = config::POINTS_PER_TRIANGLE;
+                        mesh.draw_slots(cmd, self.pipeline.layout, &scene_gpu.material_sets, slots);
+                    }
+                }
             });
         }
         if let Some(r) = &self.refine {
@@ -266,6 +353,16 @@ impl PointsVoxelizer {
 
     pub fn notes(&self) -> Vec<String> {
         let refined = if self.refine.is_some() { ", refined where the camera looks" } else { "" };
-        vec![format!("points: {} sample points at {} per voxel area{refined}", self.count, self.density)]
+        vec![match self.source {
+            PointSource::Load => {
+                format!("points: {} sample points at {} per voxel area{refined}", self.count, self.density)
+            }
+            PointSource::Gpu => format!(
+                "points: generated on the GPU at {} per voxel area over {} triangles (split to {} points at most){refined}",
+                self.density,
+                self.count,
+                config::POINTS_PER_TRIANGLE
+            ),
+        }]
     }
 }

@@ -1,7 +1,10 @@
-//! Splits, when the scene loads, exactly those triangles whose tessellation levels would pass
-//! a bound: the device's `maxTessellationGenerationLevel` (Freed 2018 §4.1.2 names the problem:
-//! such triangles leave holes), or the lower patch-balance bound of `tess.rs`. Longest-edge bisection until every level fits. The level formulas
-//! are those of `shaders-glsl/voxelize/tess.tesc`.
+//! Splits, when the scene loads, exactly those triangles a voxelizer cannot take whole, by
+//! longest-edge bisection: for the tessellation path, those whose levels would pass the device's
+//! `maxTessellationGenerationLevel` (Freed 2018 §4.1.2 names the problem: such triangles leave
+//! holes) or the lower patch-balance bound of `tess.rs` (the level formulas are those of
+//! `shaders-glsl/voxelize/tess.tesc`); for the point path generating on the GPU, those that
+//! need more points than a triangle's slots (Mavridis & Papaioannou 2011 split big triangles
+//! at load, rather than amplify them at run time).
 
 use glam::{Vec2, Vec3, Vec4};
 
@@ -34,10 +37,17 @@ fn midpoint(a: &Vertex, b: &Vertex) -> Vertex {
 pub fn subdivide_for_tessellation(mesh: &Mesh, grid: &VoxelGrid, scale: f32, max_level: f32) -> (Mesh, usize) {
     // Margin: the GPU computes in f32 and rounds levels up.
     let limit = (max_level - 0.5).max(1.0);
-    let fits = |v: &[Vertex; 3]| {
-        let (outer, inner) = tess_levels(v.map(|x| Vec3::from(x.pos)), grid, scale);
+    subdivide_until(mesh, |p| {
+        let (outer, inner) = tess_levels(p, grid, scale);
         outer.iter().all(|&l| l <= limit) && inner <= limit
-    };
+    })
+}
+
+/// The mesh with every triangle that `fits` refuses bisected along its longest edge until
+/// every piece fits; returns it with the number of original triangles that were split.
+/// `fits` must accept every triangle small enough (the bisection halves the area each time).
+pub fn subdivide_until(mesh: &Mesh, fits: impl Fn([Vec3; 3]) -> bool) -> (Mesh, usize) {
+    let fits = |v: &[Vertex; 3]| fits(v.map(|x| Vec3::from(x.pos)));
     let mut vertices = mesh.vertices.clone();
     let mut indices = Vec::with_capacity(mesh.indices.len());
     let mut draws = Vec::with_capacity(mesh.draws.len());

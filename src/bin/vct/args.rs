@@ -307,6 +307,12 @@ pub enum VoxelizerArg {
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PointSourceArg {
+    Load,
+    Gpu,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum FilterArg {
     Iso,
     Aniso,
@@ -367,6 +373,10 @@ pub struct MethodArgs {
     /// pixels it sees (Mavridis & Papaioannou 2011 §3.2; on|off).
     #[arg(long, value_enum, default_value = "on")]
     pub refine: OnOff,
+    /// Point path: scatter the points once when the volume is built (load), or generate them
+    /// each frame in the vertex shader (gpu).
+    #[arg(long, value_enum, default_value = "load")]
+    pub point_source: PointSourceArg,
     /// Rasterized path: framebuffer resolution over voxel resolution.
     #[arg(long, default_value_t = 1.0)]
     pub viewport_scale: f32,
@@ -454,7 +464,14 @@ impl MethodArgs {
                 if !(self.point_density.is_finite() && self.point_density > 0.0 && self.point_density <= 1024.0) {
                     bail!("--point-density must be in (0, 1024] points per voxel area, got {}", self.point_density);
                 }
-                VoxelizeMethod::Points { density: self.point_density, refine: self.refine == OnOff::On }
+                VoxelizeMethod::Points {
+                    density: self.point_density,
+                    source: match self.point_source {
+                        PointSourceArg::Load => vct::voxel::points::PointSource::Load,
+                        PointSourceArg::Gpu => vct::voxel::points::PointSource::Gpu,
+                    },
+                    refine: self.refine == OnOff::On,
+                }
             }
         })
     }
