@@ -170,7 +170,11 @@ fn cli_rejects_absurd_voxel_resolutions_and_empty_scenes() {
         // buffer would pass MAX_POINTS.
         (&["voxelize", "--voxelizer", "points", "--point-density", "0", "--view", o][..], 1, "--point-density"),
         (&["voxelize", "--voxelizer", "points", "--point-density", "NaN", "--view", o][..], 1, "--point-density"),
-        (&["voxelize", "--voxelizer", "points", "--point-density", "1000", "--res", "512", "--view", o][..], 1, "point-density"),
+        (
+            &["voxelize", "--voxelizer", "points", "--point-density", "1000", "--res", "512", "--view", o][..],
+            1,
+            "point-density",
+        ),
         // A dense 512³ grid's occupied-voxel list passes lavapipe's largest storage buffer.
         (&["voxelize", "--res", "512", "--storage", "dense", "--view", o][..], 1, "largest storage buffer"),
     ] {

@@ -66,7 +66,9 @@ fn two_lights_give_the_sum_of_each_alone() {
         let both = render_with(&ctx, &[a, b], view, linear);
         let parts = [render_with(&ctx, &[a], view, linear), render_with(&ctx, &[b], view, linear)];
         let (mean, worst) = sum_error(&both, &parts);
-        println!("{view:?} (linear model {linear}): mean |both - (a + b)| {mean:.2e} of the mean, worst pixel {worst:.2e}");
+        println!(
+            "{view:?} (linear model {linear}): mean |both - (a + b)| {mean:.2e} of the mean, worst pixel {worst:.2e}"
+        );
         assert!(mean < bound, "{view:?}: the two lights' image is not the sum of each alone: {mean:.2e}");
     }
     common::assert_clean(&ctx);

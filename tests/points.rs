@@ -7,9 +7,9 @@ mod common;
 
 use glam::Vec3;
 use vct::bench::stability::voxel_accuracy;
+use vct::reference::coverage::RefGrid;
 use vct::scene::Scene;
 use vct::voxel::headless::voxelize_in;
-use vct::reference::coverage::RefGrid;
 use vct::voxel::points::{PointSource, DEFAULT_POINT_DENSITY};
 use vct::voxel::{VoxelGrid, VoxelizeMethod};
 
@@ -77,7 +77,12 @@ fn a_zero_area_triangle_writes_nothing() {
     let a = voxelize_in(&ctx, &only, points(DEFAULT_POINT_DENSITY), unit_grid(32), 1).unwrap();
     let b = voxelize_in(&ctx, &with, points(DEFAULT_POINT_DENSITY), unit_grid(32), 1).unwrap();
     let count = |o: Vec<bool>| o.iter().filter(|&&x| x).count();
-    assert!(a.occupied() == b.occupied(), "the degenerate triangles wrote voxels: {} against {}", count(b.occupied()), count(a.occupied()));
+    assert!(
+        a.occupied() == b.occupied(),
+        "the degenerate triangles wrote voxels: {} against {}",
+        count(b.occupied()),
+        count(a.occupied())
+    );
     // Nothing but degenerate triangles, with the refinement too: an empty volume, no error.
     let none = Scene::from_triangles(&[(line, 0), (point, 0)], &[Vec3::splat(0.8)]);
     let c = voxelize_in(&ctx, &none, VoxelizeMethod::points(), unit_grid(32), 1).unwrap();
@@ -98,7 +103,10 @@ fn refinement_fills_the_holes_the_camera_would_see() {
         let method = VoxelizeMethod::Points { density: 0.25, source: PointSource::Load, refine };
         let run = voxelize_in(&ctx, &scene, method, grid, 1).unwrap();
         let (visible, all) = (seen.accuracy(&run.occupied()), exact.accuracy(&run.occupied()));
-        println!("refinement {refine}: visible recall {:.4} ({} voxels seen); {all:?}", visible.recall, visible.required);
+        println!(
+            "refinement {refine}: visible recall {:.4} ({} voxels seen); {all:?}",
+            visible.recall, visible.required
+        );
         assert!(
             (lowest..=highest).contains(&visible.recall),
             "refinement {refine}: recall {:.4} of the voxels the camera sees",

@@ -262,7 +262,8 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
                     let source = crate::voxel::points::DEFAULT_POINT_SOURCE;
                     let method = VoxelizeMethod::Points { density, source, refine };
                     progress(&format!("{name} points at {density} per voxel area, refinement {refine}, {res}³"));
-                    let options = RenderOptions { method, resolution: Some(res), storage: stored, ..Default::default() };
+                    let options =
+                        RenderOptions { method, resolution: Some(res), storage: stored, ..Default::default() };
                     let row = measure(ctx, opts, name, scene, &reference, options)?;
                     density_sweep.push(points::DensityRow { density, refine, row });
                 }

@@ -67,8 +67,7 @@ pub fn density_curve(r: &Results) -> Regime {
 pub fn flip_against_recall(r: &Results) -> Regime {
     let mut series = Vec::new();
     for scene in scenes(r) {
-        let sweep: Vec<&DensityRow> =
-            r.density_sweep.iter().filter(|d| d.row.scene == scene && !d.refine).collect();
+        let sweep: Vec<&DensityRow> = r.density_sweep.iter().filter(|d| d.row.scene == scene && !d.refine).collect();
         let Some(res) = sweep.first().map(|d| d.row.resolution) else { continue };
         let mut points: Vec<(f64, f64)> = sweep.iter().map(|d| (d.row.recall, d.row.flip as f64)).collect();
         points.sort_by(|a, b| a.0.total_cmp(&b.0));

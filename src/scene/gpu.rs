@@ -133,7 +133,13 @@ impl MeshBuffers {
     /// Draws `slots` vertices per triangle, without vertex or index buffers (a vertex shader
     /// that reads the mesh as storage: `gl_VertexIndex / slots` is the triangle), one draw per
     /// material as [`MeshBuffers::draw`].
-    pub fn draw_slots(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, material_sets: &DescriptorSet, slots: u32) {
+    pub fn draw_slots(
+        &self,
+        cmd: vk::CommandBuffer,
+        layout: vk::PipelineLayout,
+        material_sets: &DescriptorSet,
+        slots: u32,
+    ) {
         let d = &self.ctx.device;
         unsafe {
             for draw in &self.draws {

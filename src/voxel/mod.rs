@@ -260,9 +260,9 @@ impl Voxelizer {
             VoxelizeMethod::Raster { coverage, viewport_scale, depth_span } => Voxelizer::Raster(
                 raster::RasterVoxelizer::new(ctx, scene_gpu, volume, coverage, viewport_scale, depth_span)?,
             ),
-            VoxelizeMethod::Points { density, source, refine } => Voxelizer::Points(
-                points::PointsVoxelizer::new(ctx, scene, scene_gpu, volume, density, source, refine)?,
-            ),
+            VoxelizeMethod::Points { density, source, refine } => {
+                Voxelizer::Points(points::PointsVoxelizer::new(ctx, scene, scene_gpu, volume, density, source, refine)?)
+            }
         })
     }
 

@@ -27,8 +27,7 @@ use super::{params_for, voxel_set, ParamsUbo, VoxelGrid, VoxelVolume};
 use crate::config;
 use crate::error::{Error, Result};
 use crate::gpu::{
-    self, scope, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline,
-    Stage,
+    self, scope, shaders, Attachments, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Stage,
 };
 use crate::scene::gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
 use crate::scene::{Draw, Mesh, Scene, Vertex};
@@ -79,7 +78,10 @@ pub fn points_for(area: f32, voxel: f32, density: f32) -> u32 {
 /// voxel a point could find.
 pub fn scatter(mesh: &Mesh, grid: &VoxelGrid, density: f32) -> Result<Mesh> {
     if !(density.is_finite() && density > 0.0) {
-        return Err(Error::param("point-density", format!("must be a positive number of points per voxel area, got {density}")));
+        return Err(Error::param(
+            "point-density",
+            format!("must be a positive number of points per voxel area, got {density}"),
+        ));
     }
     let mut total = 0u64;
     for t in 0..mesh.triangle_count() {
@@ -224,7 +226,10 @@ pub const DEFAULT_POINT_SOURCE: PointSource = PointSource::Load;
 enum Points {
     Buffer(MeshBuffers),
     /// The mesh with its big triangles split, read as storage (set 3).
-    Generated { mesh: MeshBuffers, set: DescriptorSet },
+    Generated {
+        mesh: MeshBuffers,
+        set: DescriptorSet,
+    },
 }
 
 pub struct PointsVoxelizer {
@@ -283,7 +288,10 @@ impl PointsVoxelizer {
             }
             PointSource::Gpu => {
                 if !(density.is_finite() && density > 0.0) {
-                    return Err(Error::param("point-density", format!("must be a positive number of points per voxel area, got {density}")));
+                    return Err(Error::param(
+                        "point-density",
+                        format!("must be a positive number of points per voxel area, got {density}"),
+                    ));
                 }
                 let (mesh, _) = subdivide_until(&scene.mesh, |p| fits_slots(p, &volume.grid, density));
                 let count = mesh.triangle_count();
