@@ -77,7 +77,7 @@ fn quick_bench_writes_csv_json_and_charts() {
         "storage_memory_vs_flip",
         "storage_time_vs_flip",
         "points_density",
-        "flip_against_recall",
+        "flip_against_recall_cornell",
     ] {
         for ext in ["png", "svg"] {
             let p = out.join(format!("{chart}.{ext}"));

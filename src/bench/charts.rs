@@ -421,7 +421,7 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
                 .configure_mesh()
                 .x_desc(g.x.as_str())
                 .y_desc(g.y.as_str())
-                .x_label_formatter(&|v| format!("{v}"))
+                .x_label_formatter(&|v| format!("{}", (v * 1e4).round() / 1e4))
                 .light_line_style(TRANSPARENT)
                 .draw()?;
             for (i, s) in g.series.iter().enumerate() {
@@ -435,12 +435,20 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
             chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
         }};
     }
-    // Log axes label the measured x values themselves (plotters would label only powers of 10).
+    // Log axes label the measured x values themselves (plotters would label only powers of 10),
+    // or 1, 2 and 5 times each power of 10 where there are too many to read.
     let xs = || {
         let mut v: Vec<f64> = pts().map(|p| p.0).collect();
         v.sort_by(f64::total_cmp);
         v.dedup();
-        v
+        if v.len() <= 10 {
+            return v;
+        }
+        let (lo, hi) = (xlo.max(1e-12).log10().floor() as i32, xhi.max(1e-12).log10().ceil() as i32);
+        (lo..=hi)
+            .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
+            .filter(|x| (xlo * 0.8..=xhi * 1.25).contains(x))
+            .collect()
     };
     let xp = ((xhi - xlo) * 0.05).max(1e-3);
     let ylog = (ylo.max(1e-9) * 0.7)..(yhi * 1.4);

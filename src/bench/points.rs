@@ -62,24 +62,23 @@ pub fn density_curve(r: &Results) -> Regime {
     }
 }
 
-/// Image FLIP against voxel recall: the density sweep (points only) as a curve per scene, and
+/// Image FLIP against voxel recall on `scene`: the density sweep (points only) as a curve, and
 /// every voxelizer of the main sweep at the same resolution as a point.
-pub fn flip_against_recall(r: &Results) -> Regime {
+pub fn flip_against_recall(r: &Results, scene: &str) -> Regime {
     let mut series = Vec::new();
-    for scene in scenes(r) {
-        let sweep: Vec<&DensityRow> = r.density_sweep.iter().filter(|d| d.row.scene == scene && !d.refine).collect();
-        let Some(res) = sweep.first().map(|d| d.row.resolution) else { continue };
+    let sweep: Vec<&DensityRow> = r.density_sweep.iter().filter(|d| d.row.scene == scene && !d.refine).collect();
+    if let Some(res) = sweep.first().map(|d| d.row.resolution) {
         let mut points: Vec<(f64, f64)> = sweep.iter().map(|d| (d.row.recall, d.row.flip as f64)).collect();
         points.sort_by(|a, b| a.0.total_cmp(&b.0));
-        series.push(Series { label: format!("{scene}, points over the density"), points });
+        series.push(Series { label: "points over the density".into(), points });
         let stored = r.stored();
         for x in r.rows.iter().filter(|x| x.scene == scene && x.resolution == res && x.storage == stored) {
-            series.push(Series { label: format!("{scene}, {}", x.voxelizer), points: vec![(x.recall, x.flip as f64)] });
+            series.push(Series { label: x.voxelizer.clone(), points: vec![(x.recall, x.flip as f64)] });
         }
     }
     Regime {
-        name: "flip_against_recall".into(),
-        title: "Does a rough volume give the same light? Image FLIP against voxel recall".into(),
+        name: format!("flip_against_recall_{scene}"),
+        title: format!("{scene}: image FLIP against voxel recall (does a rough volume give the same light?)"),
         x: "voxel recall against exact coverage".into(),
         y: "image FLIP against the path-traced reference".into(),
         log_x: false,
@@ -94,7 +93,10 @@ pub fn draw(dir: &Path, r: &Results) -> Result<Vec<PathBuf>> {
         return Ok(Vec::new());
     }
     let mut files = charts::draw_named(dir, "points_density", &density_curve(r))?;
-    files.extend(charts::draw_named(dir, "flip_against_recall", &flip_against_recall(r))?);
+    for scene in scenes(r) {
+        let g = flip_against_recall(r, &scene);
+        files.extend(charts::draw_named(dir, &g.name, &g)?);
+    }
     Ok(files)
 }
 

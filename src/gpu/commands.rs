@@ -87,6 +87,13 @@ pub fn image_barrier(
     image_barrier_mips(ctx, cmd, image, 0..image.desc.mip_levels, old, new, src, dst);
 }
 
+/// Discards a depth image's contents for a pass that clears and writes it, after the work in
+/// `after` (which read it last).
+pub fn discard_to_depth(ctx: &Context, cmd: vk::CommandBuffer, image: &Image, after: scope::Scope) {
+    let (old, new) = (vk::ImageLayout::UNDEFINED, vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL);
+    image_barrier(ctx, cmd, image, old, new, after, scope::DEPTH_RW);
+}
+
 /// Discards an image's contents, zeroes every mip and leaves it in GENERAL, after the work in
 /// `after` (the caller makes the clear visible to whatever comes next).
 pub fn clear_to_general(ctx: &Context, cmd: vk::CommandBuffer, image: &Image, after: scope::Scope) {

@@ -15,7 +15,7 @@ pub mod timer;
 
 pub use buffer::Buffer;
 pub use commands::{
-    blit_to_present, clear_mips, clear_to_general, copy_buffer, copy_buffer_at, copy_level, dispatch,
+    blit_to_present, clear_mips, clear_to_general, copy_buffer, copy_buffer_at, copy_level, discard_to_depth, dispatch,
     dispatch_indirect, fill_buffer, fill_buffer_at, image_barrier, image_barrier_mips, memory_barrier, read_buffer,
     read_image, render, render_depth_layer, render_multi, update_buffer, upload_levels, Attachments,
 };

@@ -111,15 +111,7 @@ impl DeferredShadePass {
     /// Depth and G-buffer in one geometry pass (it replaces the depth prepass).
     pub fn record_gbuffer(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &targets.depth,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            scope::COMPUTE_READ,
-            scope::DEPTH_RW,
-        );
+        gpu::discard_to_depth(ctx, cmd, &targets.depth, scope::COMPUTE_READ);
         for img in [&self.albedo, &self.normal] {
             gpu::image_barrier(
                 ctx,

@@ -33,15 +33,7 @@ impl DepthPrepass {
 
     pub fn record(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
         let ctx = &self.ctx;
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &targets.depth,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            scope::DEPTH_RW,
-            scope::DEPTH_RW,
-        );
+        gpu::discard_to_depth(ctx, cmd, &targets.depth, scope::DEPTH_RW);
         let att = Attachments {
             color: None,
             depth: Some((&targets.depth, vk::AttachmentLoadOp::CLEAR)),

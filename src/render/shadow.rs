@@ -73,15 +73,7 @@ impl ShadowPass {
             vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::COMPUTE_SHADER,
             vk::AccessFlags2::SHADER_SAMPLED_READ,
         );
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &self.map,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            sampled,
-            scope::DEPTH_RW,
-        );
+        gpu::discard_to_depth(ctx, cmd, &self.map, sampled);
         for (layer, pipeline) in self.pipelines.iter().enumerate() {
             gpu::render_depth_layer(ctx, cmd, &self.map, layer as u32, || {
                 pipeline.bind(cmd, &[scene.set.raw]);

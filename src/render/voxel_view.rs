@@ -91,15 +91,7 @@ pub fn render_voxels(ctx: &Arc<Context>, scene: &Scene, run: &VoxelRun) -> Resul
             scope::NONE,
             scope::COLOR_WRITE,
         );
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &depth,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            scope::NONE,
-            scope::DEPTH_RW,
-        );
+        gpu::discard_to_depth(ctx, cmd, &depth, scope::NONE);
         let att = Attachments {
             color: Some((&color, vk::AttachmentLoadOp::CLEAR, [0.05, 0.05, 0.07, 1.0])),
             depth: Some((&depth, vk::AttachmentLoadOp::CLEAR)),

@@ -181,15 +181,7 @@ impl Refine {
     }
 
     fn record(&self, ctx: &Context, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, set: &DescriptorSet) {
-        gpu::image_barrier(
-            ctx,
-            cmd,
-            &self.depth,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            scope::DEPTH_RW,
-            scope::DEPTH_RW,
-        );
+        gpu::discard_to_depth(ctx, cmd, &self.depth, scope::DEPTH_RW);
         let (width, height) = (self.depth.desc.extent.width, self.depth.desc.extent.height);
         let att = |load| Attachments { color: None, depth: Some((&self.depth, load)), width, height };
         gpu::render(ctx, cmd, att(vk::AttachmentLoadOp::CLEAR), || {
