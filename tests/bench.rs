@@ -68,6 +68,19 @@ fn quick_bench_writes_csv_json_and_charts() {
     let [low, high] = vct::bench::points::QUICK_DENSITIES.map(|d| d as f64);
     assert!(recall(false, high) > recall(false, low), "{sweep:?}");
     assert!(recall(true, low) >= recall(false, low), "{sweep:?}");
+    // The diffuse cones at one pixel in 4 and 16, beside every pixel: FLIP against the
+    // reference moves little.
+    let scaled = json["gi_scale_sweep"].as_array().unwrap();
+    assert_eq!(scaled.len(), vct::bench::gi_scale::SCALES.len());
+    let full = rows
+        .iter()
+        .find(|r| r[2] == "raster-conservative" && r[3] == "32" && r[col("storage")] == stored)
+        .map(|r| r[col("flip")].parse::<f64>().unwrap())
+        .unwrap();
+    for x in scaled {
+        let flip = x["row"]["flip"].as_f64().unwrap();
+        assert!((flip - full).abs() < 0.02, "GI scale {}: FLIP {flip} against {full}", x["scale"]);
+    }
     assert!(!json["device"].as_str().unwrap().is_empty());
     for chart in [
         "voxelize_time",
@@ -78,6 +91,7 @@ fn quick_bench_writes_csv_json_and_charts() {
         "storage_time_vs_flip",
         "points_density",
         "flip_against_recall_cornell",
+        "gi_scale",
     ] {
         for ext in ["png", "svg"] {
             let p = out.join(format!("{chart}.{ext}"));

@@ -44,13 +44,19 @@ float shadow_factor(int j, vec3 p, vec3 n) {
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
 }
 
+// The shading normal turned to the side facing the viewer (surfaces are two-sided).
+vec3 facing_normal(vec3 n, vec3 world) {
+    return dot(n, frame.camera_pos.xyz - world) < 0.0 ? -n : n;
+}
+
 // Radiance leaving `world` towards the camera (or the debug view chosen in frame.view), for
-// material `m` with its textures already applied: `albedo` and shading normal `n`.
-vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
+// material `m` with its textures already applied: `albedo` and shading normal `n`. `given`:
+// the diffuse cones' gather (rgb light, a occlusion) was traced elsewhere (at a reduced
+// resolution, then upsampled: shade/deferred.comp) and is `gathered_in`.
+vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given, vec4 gathered_in) {
     float roughness = m.emissive.a, metallic = m.albedo.a;
     vec3 v = normalize(frame.camera_pos.xyz - world);
-    // Two-sided: shade the side facing the viewer.
-    if (dot(n, v) < 0.0) n = -n;
+    n = facing_normal(n, world);
 
     vec3 direct = vec3(0.0);
     for (int j = 0; j < light_count(); j++) {
@@ -65,7 +71,7 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
     if (frame.view.z > 0.5) {
         ConeParams p = frame_cone_params();
         vec3 uvw = world_to_uvw(world);
-        vec4 gathered = gather_diffuse(uvw, n, p);
+        vec4 gathered = given ? gathered_in : gather_diffuse(uvw, n, p);
         occlusion = gathered.a;
         // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
         diffuse = albedo * (1.0 - metallic) * gathered.rgb;
@@ -89,6 +95,10 @@ vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
         default: result = m.emissive.rgb + direct + indirect; break;
     }
     return result;
+}
+
+vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
+    return shade_surface_given(m, albedo, n, world, false, vec4(0.0));
 }
 
 #endif

@@ -309,6 +309,7 @@ pub fn draw_all(dir: &Path, all: &Results, before: Option<&Results>) -> Result<V
         files.extend(draw_named(dir, &ratio.name, &ratio)?);
     }
     files.extend(super::points::draw(dir, r)?);
+    files.extend(super::gi_scale::draw(dir, r)?);
     Ok(files)
 }
 

@@ -7,6 +7,7 @@
 pub mod accuracy;
 pub mod auto;
 pub mod charts;
+pub mod gi_scale;
 pub mod hostile;
 pub mod occupancy;
 pub mod points;
@@ -48,6 +49,8 @@ pub struct BenchOptions {
     /// The point voxelizer's densities swept at the first resolution, with and without its
     /// refinement (points per voxel area).
     pub point_densities: Vec<f32>,
+    /// GI scales run beside 1 with the default configuration at the first resolution.
+    pub gi_scales: Vec<u32>,
 }
 
 /// One configuration's figures.
@@ -105,6 +108,9 @@ pub struct Results {
     /// The point voxelizer at several densities (absent in runs before it).
     #[serde(default)]
     pub density_sweep: Vec<points::DensityRow>,
+    /// The diffuse cones at a reduced resolution (absent in runs before `--gi-scale`).
+    #[serde(default)]
+    pub gi_scale_sweep: Vec<gi_scale::ScaleRow>,
     /// The default storage on the device (`auto` resolved; absent in runs before residency,
     /// whose first rows ran the default: see [`Results::stored`]).
     #[serde(default)]
@@ -235,6 +241,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     let mut rows = Vec::new();
     let mut references = Vec::new();
     let mut density_sweep = Vec::new();
+    let mut gi_scale_sweep = Vec::new();
     for (name, scene) in &opts.scenes {
         let (reference, info) = reference_cached(scene, name, 1, opts.reference_spp, &opts.cache_dir, progress)?;
         references.push(info);
@@ -267,6 +274,14 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
                     let row = measure(ctx, opts, name, scene, &reference, options)?;
                     density_sweep.push(points::DensityRow { density, refine, row });
                 }
+            }
+            // The diffuse cones at a reduced resolution, the rest as the main sweep's default.
+            for &scale in &opts.gi_scales {
+                progress(&format!("{name} GI scale {scale}, {res}³"));
+                let options =
+                    RenderOptions { resolution: Some(res), storage: stored, gi_scale: scale, ..Default::default() };
+                let row = measure(ctx, opts, name, scene, &reference, options)?;
+                gi_scale_sweep.push(gi_scale::ScaleRow { scale, row });
             }
         }
     }
@@ -301,6 +316,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
         default_storage: Some(Storage::default().resolve(ctx, false).label().into()),
         triangle_sweep,
         density_sweep,
+        gi_scale_sweep,
     })
 }
 
@@ -467,5 +483,6 @@ pub fn summary(r: &Results) -> String {
         s.push_str(&format!("| {} | {} | {} | {:.2} |\n", t.scene, t.voxelizer, t.triangles, t.voxelize_ms));
     }
     s.push_str(&points::summary(r));
+    s.push_str(&gi_scale::summary(r));
     s
 }

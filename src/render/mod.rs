@@ -158,6 +158,9 @@ pub struct RenderOptions {
     pub storage: Storage,
     /// Slots of the sparse brick pool; `None`: as many as a census counts.
     pub bricks: Option<u32>,
+    /// The diffuse cones run at one pixel in `gi_scale`² (1, 2 or 4), upsampled edge-aware
+    /// (deferred tracing only).
+    pub gi_scale: u32,
 }
 
 /// Which texels the mip filters visit.
@@ -185,6 +188,7 @@ impl Default for RenderOptions {
             work: Work::default(),
             storage: Storage::default(),
             bricks: None,
+            gi_scale: 1,
         }
     }
 }
@@ -300,7 +304,11 @@ impl Renderer {
         let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso)?;
         let deferred = match options.tracing {
             Tracing::Deferred => {
-                Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, &targets, aniso)?)
+                let s = options.gi_scale;
+                Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, &targets, aniso, s)?)
+            }
+            Tracing::Forward if options.gi_scale != 1 => {
+                return Err(crate::Error::param("gi-scale", "tracing at a reduced resolution needs --tracing deferred"))
             }
             Tracing::Forward => None,
         };
@@ -481,6 +489,7 @@ impl Renderer {
                 &self.voxels.bricks,
                 &self.targets,
                 self.scene.settings.gi.filter == Filter::Aniso,
+                self.options.gi_scale,
             )?),
             Tracing::Forward => None,
         };

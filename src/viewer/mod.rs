@@ -34,6 +34,7 @@ vct viewer keys:
   C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, radiance:0..3
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
+  R              diffuse cones at one pixel in 1 / 4 / 16 (GI scale 1, 2, 4)
   T              temporal filtering on / off
   I              on-screen overlay on / off (never in screenshots)
   F12            screenshot (vct-screenshot-N.png)
@@ -155,9 +156,10 @@ fn overlay_lines(r: &Running) -> Vec<String> {
             renderer.voxels.bricks.storage.label()
         ),
         format!(
-            "view {}  GI {}  temporal {}  bounces {}  filter {}",
+            "view {}  GI {} (scale {})  temporal {}  bounces {}  filter {}",
             format!("{:?}", o.view).to_lowercase(),
             on(o.gi),
+            o.gi_scale,
             on(gi.temporal < 1.0),
             gi.bounces,
             format!("{:?}", gi.filter).to_lowercase()
@@ -336,6 +338,18 @@ impl App {
                 if matches!(options.view, View::Radiance(_)) && !r.renderer.radiance.chains.isotropic {
                     Self::rebuild(r, options)?;
                 }
+            }
+            KeyCode::KeyR if options.tracing == crate::render::Tracing::Forward => {
+                println!("GI scale: reduced-resolution tracing needs --tracing deferred");
+            }
+            KeyCode::KeyR => {
+                options.gi_scale = match options.gi_scale {
+                    1 => 2,
+                    2 => 4,
+                    _ => 1,
+                };
+                println!("GI scale: {} (diffuse cones at one pixel in {})", options.gi_scale, options.gi_scale.pow(2));
+                Self::rebuild(r, options)?;
             }
             KeyCode::KeyG => {
                 r.renderer.options.gi = !options.gi;

@@ -153,6 +153,10 @@ pub struct SceneArgs {
     /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
+    /// Trace the diffuse cones at one pixel in 1, 4 or 16 (1|2|4), upsampled edge-aware on the
+    /// G-buffer's depth and normal (deferred tracing; the specular cone stays per pixel).
+    #[arg(long, default_value_t = 1)]
+    pub gi_scale: u32,
     /// Mip filtering over the occupied texels of each level, or over every texel (dense).
     #[arg(long, value_enum, default_value = "occupied")]
     pub work: WorkArg,

@@ -82,6 +82,7 @@ fn render(args: RenderArgs) -> Result<()> {
         work: args.scene.work.work(),
         storage: args.scene.method.storage(),
         bricks: args.scene.method.bricks,
+        gi_scale: args.scene.gi_scale,
     };
     let mut choice = None;
     if auto {
@@ -227,6 +228,7 @@ fn view(args: ViewArgs) -> Result<()> {
             work: args.scene.work.work(),
             storage: args.scene.method.storage(),
             bricks: args.scene.method.bricks,
+            gi_scale: args.scene.gi_scale,
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,
@@ -438,6 +440,7 @@ fn bench(args: BenchArgs) -> Result<()> {
         } else {
             vct::bench::points::DENSITIES.to_vec()
         },
+        gi_scales: vct::bench::gi_scale::SCALES.to_vec(),
         out_dir: out.clone(),
         cache_dir: out.parent().unwrap_or(Path::new(".")).join("cache"),
         compare_storage: if args.compare_storage == OnOff::On {
