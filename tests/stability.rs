@@ -3,7 +3,7 @@
 
 mod common;
 
-use vct::bench::stability::{leak, raster_cracks, self_illumination_ratio, subvoxel_triangles};
+use vct::bench::stability::{flicker, leak, raster_cracks, self_illumination_ratio, subvoxel_triangles, Motion};
 use vct::scene::file::GiFile;
 
 #[test]
@@ -60,9 +60,11 @@ fn a_lit_plane_lights_itself_without_the_cone_offset() {
 fn snapping_and_temporal_filtering_calm_a_sliding_volume() {
     let ctx = common::context();
     let mean = |pts: Vec<(f64, f64)>| pts.iter().map(|p| p.1).sum::<f64>() / pts.len() as f64;
-    let free = mean(vct::bench::stability::flicker(&ctx, true, false, 1.0, 12).unwrap());
-    let snapped = mean(vct::bench::stability::flicker(&ctx, true, true, 1.0, 12).unwrap());
-    let filtered = mean(vct::bench::stability::flicker(&ctx, true, false, 0.2, 12).unwrap());
+    let sliding = |snap| Motion::Volume { snap };
+    let full = (1, false);
+    let free = mean(flicker(&ctx, sliding(false), 1.0, full, 12).unwrap());
+    let snapped = mean(flicker(&ctx, sliding(true), 1.0, full, 12).unwrap());
+    let filtered = mean(flicker(&ctx, sliding(false), 0.2, full, 12).unwrap());
     println!("indirect change per frame (%): free {free:.3}, snapped {snapped:.3}, temporal 0.2 {filtered:.3}");
     assert!(free > 0.5, "a sliding unsnapped volume should flicker: {free}%");
     assert!(snapped < free / 2.0, "snapping should calm it: {snapped} vs {free}");

@@ -30,6 +30,9 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     LightData lights[MAX_LIGHTS];
     mat4 light_layers[MAX_SHADOW_LAYERS]; // each shadow-map layer's world-to-clip (a point light's six
                                           // cube faces: +x, -x, +y, -y, +z, -z)
+    mat4 previous_view_proj; // the previous frame's world-to-clip (screen-space accumulation)
+    vec4 gi_jitter;          // xy: the pixel of each GI_SCALE block the diffuse cones trace this
+                             // frame; z: a history to accumulate with (1) or none (0)
 } frame;
 
 // World position to voxel coordinates (voxel v spans [v, v + 1)).

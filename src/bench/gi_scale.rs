@@ -1,6 +1,8 @@
 //! Reduced-resolution indirect light on the bench (`--gi-scale`): the default configuration at
-//! the first resolution with the diffuse cones traced at one pixel in 4 and 16, beside every
-//! pixel (the main sweep's row), charted as frame time against image FLIP per scene.
+//! the first resolution with the diffuse cones traced at one pixel in 4 and 16, with and
+//! without accumulation over frames (`--gi-accumulate`; measured on a still camera after
+//! gi-scale² frames, when it has converged), beside every pixel (the main sweep's row),
+//! charted as frame time against image FLIP per scene.
 
 use std::path::{Path, PathBuf};
 
@@ -17,6 +19,9 @@ pub const SCALES: [u32; 2] = [2, 4];
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ScaleRow {
     pub scale: u32,
+    /// Accumulated over frames (absent in runs before `--gi-accumulate`).
+    #[serde(default)]
+    pub accumulate: bool,
     pub row: Row,
 }
 
@@ -31,19 +36,26 @@ fn full_resolution<'a>(r: &'a Results, s: &ScaleRow) -> Option<&'a Row> {
     })
 }
 
-/// Frame time against FLIP over the scales, a curve per scene (scale 1 first).
+/// Frame time against FLIP over the scales, two curves per scene (scale 1 first): upsampled
+/// each frame, and accumulated.
 pub fn chart(r: &Results) -> Regime {
     let mut scenes: Vec<String> = r.gi_scale_sweep.iter().map(|s| s.row.scene.clone()).collect();
     scenes.dedup();
+    let scales = SCALES.map(|s| s.to_string()).join(", ");
     let series = scenes
         .into_iter()
-        .map(|scene| {
-            let rows: Vec<&ScaleRow> = r.gi_scale_sweep.iter().filter(|s| s.row.scene == scene).collect();
-            let full = rows.first().and_then(|s| full_resolution(r, s));
-            let points =
-                full.into_iter().chain(rows.iter().map(|s| &s.row)).map(|x| (x.total_ms, x.flip as f64)).collect();
-            Series { label: format!("{scene}: GI scale 1, {}", SCALES.map(|s| s.to_string()).join(", ")), points }
+        .flat_map(|scene| {
+            [false, true].map(|accumulate| {
+                let rows: Vec<&ScaleRow> =
+                    (r.gi_scale_sweep.iter()).filter(|s| s.row.scene == scene && s.accumulate == accumulate).collect();
+                let full = rows.first().and_then(|s| full_resolution(r, s));
+                let points =
+                    full.into_iter().chain(rows.iter().map(|s| &s.row)).map(|x| (x.total_ms, x.flip as f64)).collect();
+                let how = if accumulate { ", accumulated" } else { "" };
+                Series { label: format!("{scene}: GI scale 1, {scales}{how}"), points }
+            })
         })
+        .filter(|s| s.points.len() > 1)
         .collect();
     Regime {
         name: "gi_scale".into(),
@@ -70,16 +82,17 @@ pub fn summary(r: &Results) -> String {
     }
     let mut s = String::from(
         "\nDiffuse cones at a reduced resolution (`--gi-scale`), default configuration:\n\n\
-         | scene | N | GI scale | frame ms | shade ms | FLIP | FLIP at scale 1 |\n|---|---|---|---|---|---|---|\n",
+         | scene | N | GI scale | accumulated | frame ms | shade ms | FLIP | FLIP at scale 1 |\n|---|---|---|---|---|---|---|---|\n",
     );
     for x in &r.gi_scale_sweep {
         let shade = |row: &Row| row.passes.iter().find(|t| t.pass == "shade").map_or(0.0, |t| t.ms);
         let full = full_resolution(r, x);
         s.push_str(&format!(
-            "| {} | {} | {} | {:.1} | {:.1} | {:.4} | {} |\n",
+            "| {} | {} | {} | {} | {:.1} | {:.1} | {:.4} | {} |\n",
             x.row.scene,
             x.row.resolution,
             x.scale,
+            if x.accumulate { "yes" } else { "no" },
             x.row.total_ms,
             shade(&x.row),
             x.row.flip,

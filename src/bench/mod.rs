@@ -276,12 +276,20 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
                 }
             }
             // The diffuse cones at a reduced resolution, the rest as the main sweep's default.
-            for &scale in &opts.gi_scales {
-                progress(&format!("{name} GI scale {scale}, {res}³"));
-                let options =
-                    RenderOptions { resolution: Some(res), storage: stored, gi_scale: scale, ..Default::default() };
-                let row = measure(ctx, opts, name, scene, &reference, options)?;
-                gi_scale_sweep.push(gi_scale::ScaleRow { scale, row });
+            for accumulate in [false, true] {
+                for &scale in &opts.gi_scales {
+                    let how = if accumulate { ", accumulated" } else { "" };
+                    progress(&format!("{name} GI scale {scale}{how}, {res}³"));
+                    let options = RenderOptions {
+                        resolution: Some(res),
+                        storage: stored,
+                        gi_scale: scale,
+                        gi_accumulate: accumulate,
+                        ..Default::default()
+                    };
+                    let row = measure(ctx, opts, name, scene, &reference, options)?;
+                    gi_scale_sweep.push(gi_scale::ScaleRow { scale, accumulate, row });
+                }
             }
         }
     }
@@ -332,7 +340,9 @@ fn measure(
 ) -> Result<Row> {
     let (method, res) = (options.method, options.resolution.unwrap_or(0));
     let renderer = Renderer::new(ctx, scene.clone(), options)?;
-    for _ in 0..opts.warmup {
+    // Accumulation is judged once it has converged: every pixel traced once.
+    let converge = if options.gi_accumulate { options.gi_scale.pow(2) } else { 0 };
+    for _ in 0..opts.warmup.max(converge) {
         renderer.render()?;
     }
     let runs: Vec<Vec<Timing>> = (0..opts.frames.max(1)).map(|_| renderer.render()).collect::<Result<_>>()?;

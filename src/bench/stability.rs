@@ -321,14 +321,27 @@ fn relative_change(a: &[f32], b: &[f32]) -> f64 {
     }
 }
 
-/// Frame-to-frame change (mean |Δ| over the mean, %) of the indirect light of a still Cornell
-/// view (direct light does not depend on the voxels) over `frames` frames, while a 4 m
-/// volume slides 3 cm a frame along x (`moving_volume`) or the spot light turns 0.5° a frame.
+/// What moves between the frames of the flicker regime.
+#[derive(Clone, Copy, Debug)]
+pub enum Motion {
+    /// A 4 m volume following a point that slides 3 cm a frame along x.
+    Volume { snap: bool },
+    /// The spot light turns 0.5° a frame.
+    Light,
+    /// The camera orbits its target by 0.5° a frame (the volume stays fitted).
+    Camera,
+}
+
+/// Frame-to-frame change (mean |Δ| over the mean, %) of the indirect light of a Cornell view
+/// (direct light does not depend on the voxels) over `frames` frames under `motion`, with the
+/// diffuse cones at one pixel in `gi_scale`², accumulated over frames or not. With a moving
+/// camera the change includes the view's own; full-resolution tracing (scale 1) is the bar.
+/// Accumulation first gets gi_scale² still frames: it converges (once) before it is judged.
 pub fn flicker(
     ctx: &Arc<Context>,
-    moving_volume: bool,
-    snap: bool,
+    motion: Motion,
     temporal: f32,
+    (gi_scale, gi_accumulate): (u32, bool),
     frames: u32,
 ) -> Result<Vec<(f64, f64)>> {
     let mut scene = Scene::embedded_default()?;
@@ -340,18 +353,34 @@ pub fn flicker(
         method: VoxelizeMethod::raster(Coverage::Msaa),
         resolution: Some(32),
         view: View::Indirect,
-        follow: moving_volume.then_some(Follow { extent: 4.0, snap }),
+        follow: match motion {
+            Motion::Volume { snap } => Some(Follow { extent: 4.0, snap }),
+            _ => None,
+        },
+        gi_scale,
+        gi_accumulate,
         ..Default::default()
     };
     let mut r = Renderer::new(ctx, scene, o)?;
+    if gi_accumulate {
+        for _ in 0..gi_scale * gi_scale {
+            r.render()?;
+        }
+    }
     let mut previous: Option<Vec<f32>> = None;
     let mut points = Vec::new();
+    let turn = glam::Quat::from_rotation_y(0.5f32.to_radians());
     for f in 0..frames {
-        if moving_volume {
-            r.follow(centre + Vec3::X * 0.03 * f as f32)?;
-        } else {
-            if let Some(light) = r.scene.lights.first_mut() {
-                crate::viewer::camera::swing_light(light, 0.0, 0.5f32.to_radians());
+        match motion {
+            Motion::Volume { .. } => r.follow(centre + Vec3::X * 0.03 * f as f32)?,
+            Motion::Light => {
+                if let Some(light) = r.scene.lights.first_mut() {
+                    crate::viewer::camera::swing_light(light, 0.0, 0.5f32.to_radians());
+                }
+            }
+            Motion::Camera => {
+                let c = &mut r.scene.camera;
+                c.eye = c.target + turn * (c.eye - c.target);
             }
         }
         r.render()?;
@@ -366,23 +395,31 @@ pub fn flicker(
 
 /// Regime 4: temporal flicker.
 pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
+    let full = (1, false);
     let configs = [
-        ("sliding volume", true, false, 1.0),
-        ("sliding volume, snapped", true, true, 1.0),
-        ("sliding volume, temporal 0.2 (reprojected)", true, false, 0.2),
-        ("sliding volume, snapped, temporal 0.2", true, true, 0.2),
-        ("turning light", false, false, 1.0),
-        ("turning light, temporal 0.2", false, false, 0.2),
+        ("sliding volume", Motion::Volume { snap: false }, 1.0, full),
+        ("sliding volume, snapped", Motion::Volume { snap: true }, 1.0, full),
+        ("sliding volume, temporal 0.2 (reprojected)", Motion::Volume { snap: false }, 0.2, full),
+        ("sliding volume, snapped, temporal 0.2", Motion::Volume { snap: true }, 0.2, full),
+        ("turning light", Motion::Light, 1.0, full),
+        ("turning light, temporal 0.2", Motion::Light, 0.2, full),
+        ("turning light, GI scale 2 accumulated", Motion::Light, 1.0, (2, true)),
+        ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true)),
+        ("orbiting camera", Motion::Camera, 1.0, full),
+        ("orbiting camera, GI scale 2", Motion::Camera, 1.0, (2, false)),
+        ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true)),
+        ("orbiting camera, GI scale 4", Motion::Camera, 1.0, (4, false)),
+        ("orbiting camera, GI scale 4 accumulated", Motion::Camera, 1.0, (4, true)),
     ];
     let series: Vec<Series> = configs
         .iter()
-        .map(|(label, moving, snap, t)| {
-            Ok(Series { label: label.to_string(), points: flicker(ctx, *moving, *snap, *t, frames)? })
+        .map(|(label, motion, t, gi)| {
+            Ok(Series { label: label.to_string(), points: flicker(ctx, *motion, *t, *gi, frames)? })
         })
         .collect::<Result<_>>()?;
     Ok(Regime {
         name: "temporal_flicker".into(),
-        title: "4. Temporal flicker of a still view".into(),
+        title: "4. Temporal flicker".into(),
         x: "frame".into(),
         y: "indirect light change from the previous frame (%)".into(),
         log_x: false,

@@ -127,7 +127,12 @@ impl DescriptorSet {
 
     /// A storage image in `GENERAL`.
     pub fn write_storage(&self, binding: u32, view: vk::ImageView) {
-        self.write_images(
+        self.write_storage_at(0, binding, view);
+    }
+
+    pub fn write_storage_at(&self, set: usize, binding: u32, view: vk::ImageView) {
+        self.write_images_at(
+            set,
             binding,
             vk::DescriptorType::STORAGE_IMAGE,
             &[vk::DescriptorImageInfo {

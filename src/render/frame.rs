@@ -83,6 +83,10 @@ pub struct FrameState<'a> {
     pub first_frame: bool,
     /// The previous frame's grid origin (a following volume moves it).
     pub previous_origin: Vec3,
+    /// The previous frame's world-to-clip matrix (this frame's with no previous frame).
+    pub previous_view_proj: Option<Mat4>,
+    /// The reduced-resolution diffuse cones' traced pixel and history (render::deferred::Jitter).
+    pub gi_jitter: Vec4,
 }
 
 pub use crate::scene::depth_range;
@@ -204,6 +208,8 @@ impl FrameUniforms {
             light_count: Vec4::new(lights.len() as f32, 0.0, 0.0, 0.0),
             lights: gpu_lights,
             light_layers,
+            previous_view_proj: f.previous_view_proj.unwrap_or(view_proj),
+            gi_jitter: f.gi_jitter,
         }
     }
 }

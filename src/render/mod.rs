@@ -161,6 +161,9 @@ pub struct RenderOptions {
     /// The diffuse cones run at one pixel in `gi_scale`² (1, 2 or 4), upsampled edge-aware
     /// (deferred tracing only).
     pub gi_scale: u32,
+    /// Accumulate the reduced-resolution diffuse cones over frames in screen space (the traced
+    /// pixel moves through each block; the history follows the camera; `gi_scale` > 1).
+    pub gi_accumulate: bool,
 }
 
 /// Which texels the mip filters visit.
@@ -189,6 +192,7 @@ impl Default for RenderOptions {
             storage: Storage::default(),
             bricks: None,
             gi_scale: 1,
+            gi_accumulate: false,
         }
     }
 }
@@ -216,6 +220,10 @@ pub struct Renderer {
     frame_index: Cell<u64>,
     /// The grid origin of the last submitted frame, for the temporal blend's reprojection.
     previous_origin: Cell<glam::Vec3>,
+    /// This frame's camera (world to clip), and the last submitted frame's, for the screen-space
+    /// accumulation's reprojection.
+    view_proj: Cell<glam::Mat4>,
+    previous_view_proj: Cell<Option<glam::Mat4>>,
     /// Problems worth telling the user (coarse shadow map, subdivided triangles).
     pub notes: Vec<String>,
 }
@@ -304,10 +312,20 @@ impl Renderer {
         let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso)?;
         let deferred = match options.tracing {
             Tracing::Deferred => {
-                let s = options.gi_scale;
-                Some(DeferredShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, &targets, aniso, s)?)
+                let (s, acc) = (options.gi_scale, options.gi_accumulate);
+                Some(DeferredShadePass::new(
+                    ctx,
+                    &scene_gpu,
+                    &shadow,
+                    &radiance,
+                    &voxels.bricks,
+                    &targets,
+                    aniso,
+                    s,
+                    acc,
+                )?)
             }
-            Tracing::Forward if options.gi_scale != 1 => {
+            Tracing::Forward if options.gi_scale != 1 || options.gi_accumulate => {
                 return Err(crate::Error::param("gi-scale", "tracing at a reduced resolution needs --tracing deferred"))
             }
             Tracing::Forward => None,
@@ -353,6 +371,8 @@ impl Renderer {
             timer,
             frame_index: Cell::new(0),
             previous_origin: Cell::new(origin),
+            view_proj: Cell::new(glam::Mat4::IDENTITY),
+            previous_view_proj: Cell::new(None),
             notes,
         })
     }
@@ -370,10 +390,13 @@ impl Renderer {
             view: self.options.view,
             first_frame: self.frame_index.get() == 0,
             previous_origin: self.previous_origin.get(),
+            previous_view_proj: self.previous_view_proj.get(),
+            gi_jitter: self.deferred.as_ref().map_or(glam::Vec4::ZERO, |d| d.jitter_uniform()),
         };
         let u = FrameUniforms::new(&s.camera, &s.lights, &s.mesh.bounds, s.settings.shadow_resolution, &state);
         self.scene_gpu.uniforms.write_pod(&u);
         self.voxelizer.set_camera(u.view_proj);
+        self.view_proj.set(u.view_proj);
     }
 
     /// Records one whole frame. The passes, in order:
@@ -441,6 +464,7 @@ impl Renderer {
     pub fn frame_recorded(&self) {
         self.frame_index.set(self.frame_index.get() + 1);
         self.previous_origin.set(self.voxels.grid.origin);
+        self.previous_view_proj.set(Some(self.view_proj.get()));
     }
 
     /// Bytes of the voxel textures and radiance volumes at this grid, beside the bounding cube's.
@@ -490,6 +514,7 @@ impl Renderer {
                 &self.targets,
                 self.scene.settings.gi.filter == Filter::Aniso,
                 self.options.gi_scale,
+                self.options.gi_accumulate,
             )?),
             Tracing::Forward => None,
         };

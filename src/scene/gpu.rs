@@ -49,6 +49,11 @@ pub struct FrameUniforms {
     /// Each shadow-map layer's world-to-clip matrix (a point light's six cube faces, +x, -x, +y,
     /// -y, +z, -z; render::frame::shadow_layers).
     pub light_layers: [Mat4; config::MAX_SHADOW_LAYERS as usize],
+    /// The previous frame's world-to-clip matrix (screen-space accumulation of indirect light).
+    pub previous_view_proj: Mat4,
+    /// xy: the pixel of each GI-scale block the diffuse cones trace this frame; z: a history to
+    /// accumulate with (1) or none (0) (render::deferred).
+    pub gi_jitter: Vec4,
 }
 
 /// One light as the shaders read it (`LightData` in common/frame.glsl).

@@ -35,6 +35,7 @@ vct viewer keys:
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
   R              diffuse cones at one pixel in 1 / 4 / 16 (GI scale 1, 2, 4)
+  P              accumulate those cones over frames on / off (GI scale 2, 4)
   T              temporal filtering on / off
   I              on-screen overlay on / off (never in screenshots)
   F12            screenshot (vct-screenshot-N.png)
@@ -156,10 +157,11 @@ fn overlay_lines(r: &Running) -> Vec<String> {
             renderer.voxels.bricks.storage.label()
         ),
         format!(
-            "view {}  GI {} (scale {})  temporal {}  bounces {}  filter {}",
+            "view {}  GI {} (scale {}{})  temporal {}  bounces {}  filter {}",
             format!("{:?}", o.view).to_lowercase(),
             on(o.gi),
             o.gi_scale,
+            if o.gi_accumulate { ", accumulated" } else { "" },
             on(gi.temporal < 1.0),
             gi.bounces,
             format!("{:?}", gi.filter).to_lowercase()
@@ -348,7 +350,17 @@ impl App {
                     2 => 4,
                     _ => 1,
                 };
+                // At full resolution every pixel is traced every frame: nothing to accumulate.
+                options.gi_accumulate &= options.gi_scale > 1;
                 println!("GI scale: {} (diffuse cones at one pixel in {})", options.gi_scale, options.gi_scale.pow(2));
+                Self::rebuild(r, options)?;
+            }
+            KeyCode::KeyP if options.gi_scale == 1 => {
+                println!("GI accumulation: needs a GI scale of 2 or 4 (R)");
+            }
+            KeyCode::KeyP => {
+                options.gi_accumulate = !options.gi_accumulate;
+                println!("GI accumulation over frames: {}", if options.gi_accumulate { "on" } else { "off" });
                 Self::rebuild(r, options)?;
             }
             KeyCode::KeyG => {

@@ -58,6 +58,18 @@ pub fn hdr(frame: &FrameImages, x: u32, y: u32) -> Vec3 {
     Vec3::new(frame.hdr[i], frame.hdr[i + 1], frame.hdr[i + 2])
 }
 
+/// Mean |a - b| over the mean of `b` (RGB, linear), over the pixels `keep` selects.
+pub fn difference(a: &FrameImages, b: &FrameImages, keep: impl Fn(usize) -> bool) -> f64 {
+    let (mut diff, mut total) = (0.0f64, 0.0f64);
+    for p in (0..(a.width * a.height) as usize).filter(|&p| keep(p)) {
+        for c in 0..3 {
+            diff += (a.hdr[4 * p + c] - b.hdr[4 * p + c]).abs() as f64;
+            total += b.hdr[4 * p + c] as f64;
+        }
+    }
+    diff / total.max(1e-12)
+}
+
 pub fn ldr(frame: &FrameImages, x: u32, y: u32) -> [u8; 3] {
     let i = ((y * frame.width + x) * 4) as usize;
     [frame.ldr[i], frame.ldr[i + 1], frame.ldr[i + 2]]

@@ -155,8 +155,16 @@ pub struct SceneArgs {
     pub inject_texels: f32,
     /// Trace the diffuse cones at one pixel in 1, 4 or 16 (1|2|4), upsampled edge-aware on the
     /// G-buffer's depth and normal (deferred tracing; the specular cone stays per pixel).
-    #[arg(long, default_value_t = 1)]
-    pub gi_scale: u32,
+    /// Default: 1 for `render` (a headless frame affords every pixel), 4 for `view`.
+    #[arg(long)]
+    pub gi_scale: Option<u32>,
+    /// Accumulate those reduced-resolution cones over frames in screen space: the traced pixel
+    /// moves through each block, the history follows the camera and is rejected where the
+    /// surface changed; a still view becomes full-resolution tracing after gi-scale² frames
+    /// (needs --gi-scale 2 or 4). Default: off for `render` (one frame has no history; give
+    /// --frames), on for `view`.
+    #[arg(long, value_enum)]
+    pub gi_accumulate: Option<OnOff>,
     /// Mip filtering over the occupied texels of each level, or over every texel (dense).
     #[arg(long, value_enum, default_value = "occupied")]
     pub work: WorkArg,

@@ -82,7 +82,8 @@ fn render(args: RenderArgs) -> Result<()> {
         work: args.scene.work.work(),
         storage: args.scene.method.storage(),
         bricks: args.scene.method.bricks,
-        gi_scale: args.scene.gi_scale,
+        gi_scale: args.scene.gi_scale.unwrap_or(1),
+        gi_accumulate: args.scene.gi_accumulate == Some(OnOff::On),
     };
     let mut choice = None;
     if auto {
@@ -228,7 +229,11 @@ fn view(args: ViewArgs) -> Result<()> {
             work: args.scene.work.work(),
             storage: args.scene.method.storage(),
             bricks: args.scene.method.bricks,
-            gi_scale: args.scene.gi_scale,
+            // The viewer's defaults, from the frame time against FLIP chart (docs/benchmarks.md,
+            // "Diffuse cones at a reduced resolution"): a tenth of the shading time of full
+            // resolution at 1280x720, and a still view converges to full resolution.
+            gi_scale: args.scene.gi_scale.unwrap_or(4),
+            gi_accumulate: args.scene.gi_accumulate.map_or(args.scene.gi_scale != Some(1), |a| a == OnOff::On),
             ..Default::default()
         },
         vsync: args.vsync == OnOff::On,
