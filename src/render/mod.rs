@@ -164,6 +164,11 @@ pub struct RenderOptions {
     /// Accumulate the reduced-resolution diffuse cones over frames in screen space (the traced
     /// pixel moves through each block; the history follows the camera; `gi_scale` > 1).
     pub gi_accumulate: bool,
+    /// Keep last frame's voxels and radiance when nothing they depend on changed (the scene is
+    /// static; the lights, the grid and the GI settings are as they were; no temporal filter
+    /// still converging; a camera-independent voxelizer): the viewer's frame is then the
+    /// G-buffer and the shading. Off, every frame builds the volume again (bench, render).
+    pub reuse_volume: bool,
 }
 
 /// Which texels the mip filters visit.
@@ -193,6 +198,7 @@ impl Default for RenderOptions {
             bricks: None,
             gi_scale: 1,
             gi_accumulate: false,
+            reuse_volume: false,
         }
     }
 }
@@ -224,8 +230,28 @@ pub struct Renderer {
     /// accumulation's reprojection.
     view_proj: Cell<glam::Mat4>,
     previous_view_proj: Cell<Option<glam::Mat4>>,
+    /// What the last built volume depended on ([`volume_key`]), and whether this frame's
+    /// uniforms found it unchanged (with `reuse_volume`).
+    volume_key: std::cell::RefCell<Option<FrameUniforms>>,
+    volume_kept: Cell<bool>,
     /// Problems worth telling the user (coarse shadow map, subdivided triangles).
     pub notes: Vec<String>,
+}
+
+/// What a frame's volume depends on, from its uniforms: all but the camera (unless the voxelizer
+/// sees through it: points with refinement) and the screen-space state.
+fn volume_key(u: &FrameUniforms, method: VoxelizeMethod) -> FrameUniforms {
+    let mut k = *u;
+    if !matches!(method, VoxelizeMethod::Points { refine: true, .. }) {
+        k.view_proj = glam::Mat4::ZERO;
+        k.inv_view_proj = glam::Mat4::ZERO;
+        k.camera_pos = glam::Vec4::ZERO;
+    }
+    k.viewport = glam::Vec4::ZERO;
+    k.view = glam::Vec4::ZERO;
+    k.previous_view_proj = glam::Mat4::ZERO;
+    k.gi_jitter = glam::Vec4::ZERO;
+    k
 }
 
 /// World size of one shadow-map texel at the farthest scene point (for the injection warning).
@@ -373,6 +399,8 @@ impl Renderer {
             previous_origin: Cell::new(origin),
             view_proj: Cell::new(glam::Mat4::IDENTITY),
             previous_view_proj: Cell::new(None),
+            volume_key: std::cell::RefCell::new(None),
+            volume_kept: Cell::new(false),
             notes,
         })
     }
@@ -397,6 +425,12 @@ impl Renderer {
         self.scene_gpu.uniforms.write_pod(&u);
         self.voxelizer.set_camera(u.view_proj);
         self.view_proj.set(u.view_proj);
+        let key = volume_key(&u, self.options.method);
+        let mut last = self.volume_key.borrow_mut();
+        let still = s.settings.gi.temporal >= 1.0
+            && last.as_ref().is_some_and(|k| bytemuck::bytes_of(k) == bytemuck::bytes_of(&key));
+        self.volume_kept.set(self.options.reuse_volume && still);
+        *last = Some(key);
     }
 
     /// Records one whole frame. The passes, in order:
@@ -405,38 +439,8 @@ impl Renderer {
         let (scene, targets) = (&self.scene_gpu, &self.targets);
         t.reset(cmd);
         t.span(cmd, "total", || {
-            t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
-            let light = !self.scene.lights.is_empty();
-            if light {
-                t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
-            }
-            let gi = &self.scene.settings.gi;
-            let (temporal, bounces, aniso) = (gi.temporal < 1.0, gi.bounces.max(1), gi.filter == Filter::Aniso);
-            let moment = gi.facing;
-            t.span(cmd, "inject", || {
-                self.inject.record(cmd, scene, &self.radiance, &self.voxels.occupied, light);
-                let temporal = temporal && self.radiance.has_history();
-                if temporal {
-                    self.temporal.record_history(cmd, &self.radiance);
-                }
-                // Without a blend or bounces, level 0 is the injected light itself.
-                if self.radiance.radiance.is_some() {
-                    let history = temporal && bounces == 1;
-                    self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Injected, history);
-                }
-            });
-            let first = self.frame_index.get() == 0;
-            let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, first);
-            t.span(cmd, "filter", filter);
-            if let Some(b) = &self.bounce {
-                t.span(cmd, "bounces", || {
-                    for k in 1..bounces {
-                        b.record(cmd, scene, &self.radiance, &self.voxels.occupied);
-                        let last = temporal && k + 1 == bounces;
-                        self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Bounced, last);
-                        filter();
-                    }
-                });
+            if !self.volume_kept.get() {
+                self.record_volume(cmd);
             }
             if self.options.view.is_volume() {
                 t.span(cmd, "volume view", || self.volume_view.record(cmd, scene, targets));
@@ -449,6 +453,45 @@ impl Renderer {
             }
             t.span(cmd, "tonemap", || self.tonemap.record(cmd, targets, self.options.view.is_raw()));
         });
+    }
+
+    /// The frame's volume: voxelize, shadow maps, injection, mip filtering and bounces.
+    fn record_volume(&self, cmd: vk::CommandBuffer) {
+        let t = &self.timer;
+        let scene = &self.scene_gpu;
+        t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
+        let light = !self.scene.lights.is_empty();
+        if light {
+            t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
+        }
+        let gi = &self.scene.settings.gi;
+        let (temporal, bounces, aniso) = (gi.temporal < 1.0, gi.bounces.max(1), gi.filter == Filter::Aniso);
+        let moment = gi.facing;
+        t.span(cmd, "inject", || {
+            self.inject.record(cmd, scene, &self.radiance, &self.voxels.occupied, light);
+            let temporal = temporal && self.radiance.has_history();
+            if temporal {
+                self.temporal.record_history(cmd, &self.radiance);
+            }
+            // Without a blend or bounces, level 0 is the injected light itself.
+            if self.radiance.radiance.is_some() {
+                let history = temporal && bounces == 1;
+                self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Injected, history);
+            }
+        });
+        let first = self.frame_index.get() == 0;
+        let filter = || self.filter.record(cmd, &self.radiance, &self.voxels.occupied, aniso, moment, first);
+        t.span(cmd, "filter", filter);
+        if let Some(b) = &self.bounce {
+            t.span(cmd, "bounces", || {
+                for k in 1..bounces {
+                    b.record(cmd, scene, &self.radiance, &self.voxels.occupied);
+                    let last = temporal && k + 1 == bounces;
+                    self.temporal.record(cmd, scene, &self.radiance, &self.voxels.occupied, Source::Bounced, last);
+                    filter();
+                }
+            });
+        }
     }
 
     /// Renders one frame and waits for it; returns the GPU time of each pass.

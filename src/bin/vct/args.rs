@@ -540,6 +540,10 @@ pub struct RenderArgs {
     /// Render this many frames and report each pass's median GPU time (the last frame is saved).
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
+    /// Keep the volume between frames while nothing it depends on changes, as `vct view` does
+    /// (with --frames: the timings of a still view).
+    #[arg(long, value_enum, default_value = "off")]
+    pub reuse_volume: OnOff,
     /// With --res auto: the largest FLIP against the path-traced reference the grid may give
     /// (0..1).
     #[arg(long, value_name = "F")]
