@@ -5,8 +5,9 @@
 //! cones are traced first at one pixel in s² and upsampled edge-aware in the shading pass (the
 //! reduced-resolution indirect light engines that ship cone tracing use; shade/deferred.comp).
 //! With accumulation on (`--gi-accumulate`) the traced pixel of each block moves frame by frame
-//! ([`Jitter`]) and every pixel keeps its last exact trace in a history reprojected with the
-//! camera and rejected on disocclusion: two full-resolution history pairs, ping-ponged.
+//! ([`jitter`]) and a pass of its own, between tracing and shading, lets every pixel keep its
+//! last trace in a history reprojected with the camera and rejected on disocclusion: two
+//! full-resolution history pairs, ping-ponged.
 
 use std::cell::Cell;
 use std::sync::Arc;
@@ -37,13 +38,14 @@ const SURFACE_FORMAT: vk::Format = vk::Format::R32G32B32A32_UINT;
 pub fn jitter(scale: u32, frame: u64) -> [u32; 2] {
     let cells = scale * scale;
     let k = (frame % cells as u64) as u32;
+    // The Bayer matrix: a coordinate's lowest bits decide the coarsest part of the rank.
     let rank = |x: u32, y: u32| {
         let mut v = 0;
-        let mut bit = scale / 2;
-        while bit > 0 {
+        let mut bit = 1;
+        while bit < scale {
             let (bx, by) = ((x & bit != 0) as u32, (y & bit != 0) as u32);
             v = v * 4 + [[0, 2], [3, 1]][by as usize][bx as usize];
-            bit /= 2;
+            bit *= 2;
         }
         v
     };
@@ -305,5 +307,30 @@ impl DeferredShadePass {
         self.shade_pipeline.bind_set(cmd, 2, set);
         targets.dispatch_per_pixel(ctx, cmd);
         gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::jitter;
+
+    #[test]
+    fn the_jitter_visits_every_pixel_of_a_block_once_a_cycle_and_far_from_the_last() {
+        for scale in [2u32, 4] {
+            let cycle: Vec<[u32; 2]> = (0..(scale * scale) as u64).map(|f| jitter(scale, f)).collect();
+            let mut seen = cycle.clone();
+            seen.sort();
+            seen.dedup();
+            assert_eq!(seen.len(), (scale * scale) as usize, "scale {scale}: {cycle:?}");
+            assert!(cycle.iter().all(|p| p[0] < scale && p[1] < scale));
+            assert_eq!(jitter(scale, (scale * scale) as u64), cycle[0], "the cycle repeats");
+            // Ordered dither: the first four frames fall in the four quadrants of the block, and
+            // the first two lie half a block apart on each axis.
+            let mut quadrants: Vec<[u32; 2]> = cycle[..4].iter().map(|p| p.map(|c| c / (scale / 2))).collect();
+            quadrants.sort();
+            quadrants.dedup();
+            assert_eq!(quadrants.len(), 4, "scale {scale}: {cycle:?}");
+            assert_eq!([cycle[1][0].abs_diff(cycle[0][0]), cycle[1][1].abs_diff(cycle[0][1])], [scale / 2; 2]);
+        }
     }
 }
