@@ -1,5 +1,7 @@
-//! GPU buffers that own their memory (gpu-allocator) and carry a debug name.
+//! GPU buffers that own their memory (gpu-allocator) and carry a debug name, and the
+//! per-frame parameter buffer whose contents travel in the command stream (frames in flight).
 
+use std::cell::RefCell;
 use std::sync::Arc;
 
 use ash::vk;
@@ -87,5 +89,70 @@ impl Drop for Buffer {
             self.ctx.free(a);
         }
         unsafe { self.ctx.device.destroy_buffer(self.raw, None) };
+    }
+}
+
+/// Frames the viewer keeps in flight: while the GPU runs one, the CPU records the next.
+pub const FRAMES_IN_FLIGHT: usize = 2;
+
+/// A small buffer of per-frame parameters (uniforms, overlay text) that the host may change at
+/// any time, even while earlier frames that read it are still running: the host keeps a copy,
+/// and each frame's commands upload it (`vkCmdUpdateBuffer`) between barriers, so every frame
+/// reads what it was recorded with without a buffer per frame in flight.
+pub struct FrameBuffer {
+    pub buffer: Buffer,
+    contents: RefCell<Vec<u8>>,
+}
+
+impl FrameBuffer {
+    /// A device-local buffer of `size` bytes (at most 65536, vkCmdUpdateBuffer's limit), zeroed.
+    pub fn new(ctx: &Arc<Context>, name: &str, size: u64, usage: vk::BufferUsageFlags) -> Result<Self> {
+        let size = size.next_multiple_of(4);
+        assert!(size <= 65536, "'{name}' is too large to update in the command stream");
+        let usage = usage | vk::BufferUsageFlags::TRANSFER_DST;
+        let buffer = Buffer::new(ctx, name, size, usage, MemoryLocation::GpuOnly)?;
+        Ok(FrameBuffer { buffer, contents: RefCell::new(vec![0; size as usize]) })
+    }
+
+    /// Sets bytes from `offset` on; frames recorded from now on read them.
+    pub fn set(&self, offset: usize, bytes: &[u8]) {
+        let mut c = self.contents.borrow_mut();
+        assert!(offset + bytes.len() <= c.len(), "write past the end of '{}'", self.buffer.name);
+        c[offset..offset + bytes.len()].copy_from_slice(bytes);
+    }
+
+    pub fn set_pod<T: bytemuck::Pod>(&self, value: &T) {
+        self.set(0, bytemuck::bytes_of(value));
+    }
+
+    /// What frames recorded from now on read.
+    pub fn contents(&self) -> Vec<u8> {
+        self.contents.borrow().clone()
+    }
+
+    /// Records the upload: after every earlier command's reads (of this and earlier frames),
+    /// before every later command's.
+    pub fn record_upload(&self, cmd: vk::CommandBuffer) {
+        let ctx = &self.buffer.ctx;
+        let all = vk::PipelineStageFlags2::ALL_COMMANDS;
+        let copy = vk::PipelineStageFlags2::COPY;
+        let reads = vk::AccessFlags2::SHADER_READ | vk::AccessFlags2::UNIFORM_READ;
+        let barrier = |src: (vk::PipelineStageFlags2, vk::AccessFlags2),
+                       dst: (vk::PipelineStageFlags2, vk::AccessFlags2)| {
+            let b = [vk::BufferMemoryBarrier2::default()
+                .src_stage_mask(src.0)
+                .src_access_mask(src.1)
+                .dst_stage_mask(dst.0)
+                .dst_access_mask(dst.1)
+                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .buffer(self.buffer.raw)
+                .offset(0)
+                .size(vk::WHOLE_SIZE)];
+            unsafe { ctx.device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().buffer_memory_barriers(&b)) };
+        };
+        barrier((all, reads), (copy, vk::AccessFlags2::TRANSFER_WRITE));
+        unsafe { ctx.device.cmd_update_buffer(cmd, self.buffer.raw, 0, &self.contents.borrow()) };
+        barrier((copy, vk::AccessFlags2::TRANSFER_WRITE), (all, reads));
     }
 }

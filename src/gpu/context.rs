@@ -21,6 +21,9 @@ pub const GPU_TIMEOUT_S: u64 = 600;
 pub struct ContextOptions {
     /// Enable `VK_LAYER_KHRONOS_validation` and a debug messenger that counts its messages.
     pub validation: bool,
+    /// With validation, also its synchronization validation (hazards between commands, and
+    /// between frames in flight).
+    pub sync_validation: bool,
     /// Pick the first device whose name contains this (case-insensitive).
     pub device: Option<String>,
     /// Extra instance extensions (the window system's surface extensions, for the viewer).
@@ -30,10 +33,17 @@ pub struct ContextOptions {
 }
 
 impl ContextOptions {
-    /// Validation on when asked for, or when `VCT_VALIDATION=1` is set in the environment.
+    /// Validation on when asked for, or when `VCT_VALIDATION=1` is set in the environment;
+    /// `VCT_VALIDATION=sync` adds synchronization validation.
     pub fn from_env(validation: bool, device: Option<String>) -> Self {
-        let env = std::env::var("VCT_VALIDATION").map(|v| v == "1").unwrap_or(false);
-        ContextOptions { validation: validation || env, device, ..Default::default() }
+        let env = std::env::var("VCT_VALIDATION").unwrap_or_default();
+        let sync_validation = env == "sync";
+        ContextOptions {
+            validation: validation || env == "1" || sync_validation,
+            sync_validation,
+            device,
+            ..Default::default()
+        }
     }
 }
 
@@ -198,13 +208,22 @@ impl Context {
         if opts.validation {
             ext_ptrs.push(ash::ext::debug_utils::NAME.as_ptr());
         }
+        let sync = opts.validation && opts.sync_validation;
+        if sync {
+            ext_ptrs.push(ash::ext::validation_features::NAME.as_ptr());
+        }
         let mut messenger_info = Self::messenger_info(counter);
+        let enables = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
+        let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(&enables);
         let mut info = vk::InstanceCreateInfo::default()
             .application_info(&app)
             .enabled_layer_names(&layer_ptrs)
             .enabled_extension_names(&ext_ptrs);
         if opts.validation {
             info = info.push_next(&mut messenger_info);
+        }
+        if sync {
+            info = info.push_next(&mut features);
         }
         let instance = unsafe { entry.create_instance(&info, None) }.vk("vkCreateInstance")?;
         Ok((instance, opts.validation))

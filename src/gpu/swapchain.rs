@@ -1,13 +1,16 @@
 //! Window surface and swapchain (for the viewer): owns the surface, the swapchain and its
-//! images, the per-frame command buffer, semaphores and fence; recreated on resize. A frame is
-//! recorded by the caller into a command buffer that ends by writing the acquired image.
+//! images, and per frame in flight a command buffer, an acquire semaphore and a fence;
+//! recreated on resize. A frame is recorded by the caller into a command buffer that ends by
+//! writing the acquired image. With `FRAMES_IN_FLIGHT` frames in flight the CPU records a frame
+//! while the GPU runs the one before; a frame waits only for the fence of the frame that last
+//! used its slot.
 
 use std::sync::Arc;
 
 use ash::vk;
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 
-use super::Context;
+use super::{Context, FRAMES_IN_FLIGHT};
 use crate::error::{Error, Result, VkContext};
 
 pub struct Swapchain {
@@ -21,10 +24,14 @@ pub struct Swapchain {
     pub format: vk::Format,
     vsync: bool,
     pool: vk::CommandPool,
-    cmd: vk::CommandBuffer,
-    image_available: vk::Semaphore,
+    /// Per frame in flight (`slot` the next): its commands, the semaphore its acquired image
+    /// signals, and the fence its submission signals.
+    cmds: Vec<vk::CommandBuffer>,
+    image_available: Vec<vk::Semaphore>,
+    in_flight: Vec<vk::Fence>,
+    slot: usize,
+    /// Per swapchain image: signalled by the frame that wrote it, waited on by its present.
     render_finished: Vec<vk::Semaphore>,
-    in_flight: vk::Fence,
 }
 
 /// What became of a frame.
@@ -70,17 +77,7 @@ impl Swapchain {
             )
         }
         .vk("vkCreateCommandPool")?;
-        let cmd = unsafe {
-            d.allocate_command_buffers(
-                &vk::CommandBufferAllocateInfo::default().command_pool(pool).command_buffer_count(1),
-            )
-        }
-        .vk("vkAllocateCommandBuffers")?[0];
-        let image_available =
-            unsafe { d.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }.vk("vkCreateSemaphore")?;
-        let in_flight =
-            unsafe { d.create_fence(&vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED), None) }
-                .vk("vkCreateFence")?;
+        // Everything made so far is owned by `s` (or its pool) before the next call can fail.
         let mut s = Swapchain {
             ctx: ctx.clone(),
             surface_loader,
@@ -92,11 +89,27 @@ impl Swapchain {
             format: vk::Format::B8G8R8A8_UNORM,
             vsync,
             pool,
-            cmd,
-            image_available,
+            cmds: Vec::new(),
+            image_available: Vec::new(),
+            in_flight: Vec::new(),
+            slot: 0,
             render_finished: Vec::new(),
-            in_flight,
         };
+        s.cmds = unsafe {
+            d.allocate_command_buffers(
+                &vk::CommandBufferAllocateInfo::default()
+                    .command_pool(pool)
+                    .command_buffer_count(FRAMES_IN_FLIGHT as u32),
+            )
+        }
+        .vk("vkAllocateCommandBuffers")?;
+        for _ in 0..FRAMES_IN_FLIGHT {
+            let sem =
+                unsafe { d.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }.vk("vkCreateSemaphore")?;
+            s.image_available.push(sem);
+            let signalled = vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED);
+            s.in_flight.push(unsafe { d.create_fence(&signalled, None) }.vk("vkCreateFence")?);
+        }
         s.recreate(width, height)?;
         Ok(s)
     }
@@ -177,11 +190,13 @@ impl Swapchain {
         Ok(())
     }
 
-    /// Waits until the previous frame's commands have finished.
+    /// Waits until every frame in flight has finished.
     pub fn wait_idle(&self) -> Result<()> {
-        match unsafe {
-            self.ctx.device.wait_for_fences(&[self.in_flight], true, super::context::GPU_TIMEOUT_S * 1_000_000_000)
-        } {
+        self.wait(&self.in_flight)
+    }
+
+    fn wait(&self, fences: &[vk::Fence]) -> Result<()> {
+        match unsafe { self.ctx.device.wait_for_fences(fences, true, super::context::GPU_TIMEOUT_S * 1_000_000_000) } {
             Ok(()) => Ok(()),
             Err(vk::Result::TIMEOUT) => Err(Error::Timeout("viewer frame".into(), super::context::GPU_TIMEOUT_S)),
             Err(result) => Err(Error::Vulkan { call: "vkWaitForFences", result }),
@@ -189,39 +204,42 @@ impl Swapchain {
     }
 
     /// Acquires an image, records `record(cmd, image)` (which must leave the image in
-    /// PRESENT_SRC_KHR), submits and presents. Waits for the previous frame first.
+    /// PRESENT_SRC_KHR), submits and presents. Waits first for the frame that last used this
+    /// slot, `FRAMES_IN_FLIGHT` frames ago; the one after it may still be running. `record` is
+    /// not called when the swapchain is out of date before acquiring.
     pub fn frame(&mut self, record: impl FnOnce(vk::CommandBuffer, vk::Image)) -> Result<FrameOutcome> {
-        self.wait_idle()?;
+        let slot = self.slot;
+        self.wait(&self.in_flight[slot..slot + 1])?;
         let d = &self.ctx.device;
-        let index = match unsafe {
-            self.loader.acquire_next_image(self.raw, u64::MAX, self.image_available, vk::Fence::null())
-        } {
+        let (cmd, fence, acquired) = (self.cmds[slot], self.in_flight[slot], self.image_available[slot]);
+        let index = match unsafe { self.loader.acquire_next_image(self.raw, u64::MAX, acquired, vk::Fence::null()) } {
             Ok((i, _)) => i,
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => return Ok(FrameOutcome::OutOfDate),
             Err(result) => return Err(Error::Vulkan { call: "vkAcquireNextImageKHR", result }),
         };
         unsafe {
-            d.reset_fences(&[self.in_flight]).vk("vkResetFences")?;
+            d.reset_fences(&[fence]).vk("vkResetFences")?;
             d.begin_command_buffer(
-                self.cmd,
+                cmd,
                 &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
             )
             .vk("vkBeginCommandBuffer")?;
         }
-        record(self.cmd, self.images[index as usize]);
+        record(cmd, self.images[index as usize]);
         let finished = self.render_finished[index as usize];
+        self.slot = (slot + 1) % FRAMES_IN_FLIGHT;
         unsafe {
-            d.end_command_buffer(self.cmd).vk("vkEndCommandBuffer")?;
-            let wait = [self.image_available];
+            d.end_command_buffer(cmd).vk("vkEndCommandBuffer")?;
+            let wait = [acquired];
             let stages = [vk::PipelineStageFlags::ALL_COMMANDS];
-            let cmds = [self.cmd];
+            let cmds = [cmd];
             let signal = [finished];
             let submit = [vk::SubmitInfo::default()
                 .wait_semaphores(&wait)
                 .wait_dst_stage_mask(&stages)
                 .command_buffers(&cmds)
                 .signal_semaphores(&signal)];
-            d.queue_submit(self.ctx.queue, &submit, self.in_flight).vk("vkQueueSubmit")?;
+            d.queue_submit(self.ctx.queue, &submit, fence).vk("vkQueueSubmit")?;
             let swapchains = [self.raw];
             let indices = [index];
             let present =
@@ -243,8 +261,12 @@ impl Drop for Swapchain {
             for s in self.render_finished.drain(..) {
                 d.destroy_semaphore(s, None);
             }
-            d.destroy_semaphore(self.image_available, None);
-            d.destroy_fence(self.in_flight, None);
+            for s in self.image_available.drain(..) {
+                d.destroy_semaphore(s, None);
+            }
+            for f in self.in_flight.drain(..) {
+                d.destroy_fence(f, None);
+            }
             d.destroy_command_pool(self.pool, None);
             self.loader.destroy_swapchain(self.raw, None);
             self.surface_loader.destroy_surface(self.surface, None);

@@ -1,20 +1,25 @@
-//! GPU timestamp timers: one named span per pass, read back after the frame as milliseconds.
+//! GPU timestamp timers: one named span per pass, read back after the frame as milliseconds;
+//! a query pool per frame in flight.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::sync::Arc;
 
 use ash::vk;
 
-use super::Context;
+use super::{Context, FRAMES_IN_FLIGHT};
 use crate::error::{Result, VkContext};
 
 pub struct GpuTimer {
     ctx: Arc<Context>,
-    pool: vk::QueryPool,
+    /// One query pool per frame in flight, used in turn: a frame's timestamps are read once
+    /// its fence has passed, while the next frame writes the other pool.
+    pools: [vk::QueryPool; FRAMES_IN_FLIGHT],
+    /// The pool the last (or current) frame records into.
+    current: Cell<usize>,
     capacity: u32,
     period_ns: f64,
-    /// (name, first query index) of the spans recorded this frame.
-    spans: RefCell<Vec<(String, u32)>>,
+    /// Per pool, (name, first query index) of the spans its frame recorded.
+    spans: [RefCell<Vec<(String, u32)>>; FRAMES_IN_FLIGHT],
 }
 
 /// One timed span: a pass name and its GPU time in milliseconds.
@@ -28,39 +33,66 @@ impl GpuTimer {
     pub fn new(ctx: &Arc<Context>, max_spans: u32) -> Result<Self> {
         let capacity = max_spans * 2;
         let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(capacity);
-        let pool = unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool")?;
-        ctx.set_name(pool, "pass timers");
-        unsafe { ctx.device.reset_query_pool(pool, 0, capacity) };
+        let mut pools = [vk::QueryPool::null(); FRAMES_IN_FLIGHT];
+        for (i, pool) in pools.iter_mut().enumerate() {
+            *pool = match unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool") {
+                Ok(p) => p,
+                Err(e) => {
+                    for p in &pools[..i] {
+                        unsafe { ctx.device.destroy_query_pool(*p, None) };
+                    }
+                    return Err(e);
+                }
+            };
+            ctx.set_name(*pool, &format!("pass timers {i}"));
+            unsafe { ctx.device.reset_query_pool(*pool, 0, capacity) };
+        }
         Ok(GpuTimer {
             ctx: ctx.clone(),
-            pool,
+            pools,
+            current: Cell::new(FRAMES_IN_FLIGHT - 1),
             capacity,
             period_ns: ctx.info.limits.timestamp_period as f64,
-            spans: RefCell::new(Vec::new()),
+            spans: Default::default(),
         })
     }
 
-    /// Forgets last frame's spans and resets the queries (record before the first span).
+    /// Starts a frame's timing in the next pool: forgets that pool's spans and resets its
+    /// queries (record before the first span).
     pub fn reset(&self, cmd: vk::CommandBuffer) {
-        self.spans.borrow_mut().clear();
-        unsafe { self.ctx.device.cmd_reset_query_pool(cmd, self.pool, 0, self.capacity) };
+        let i = (self.current.get() + 1) % FRAMES_IN_FLIGHT;
+        self.current.set(i);
+        self.spans[i].borrow_mut().clear();
+        unsafe { self.ctx.device.cmd_reset_query_pool(cmd, self.pools[i], 0, self.capacity) };
     }
 
     /// Runs `record` between two timestamps named `name`.
     pub fn span<R>(&self, cmd: vk::CommandBuffer, name: &str, record: impl FnOnce() -> R) -> R {
-        let index = self.spans.borrow().len() as u32 * 2;
+        let i = self.current.get();
+        let index = self.spans[i].borrow().len() as u32 * 2;
         assert!(index + 1 < self.capacity, "more timer spans than the pool holds");
-        self.spans.borrow_mut().push((name.to_string(), index));
+        self.spans[i].borrow_mut().push((name.to_string(), index));
         let d = &self.ctx.device;
-        unsafe { d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, self.pool, index) };
+        unsafe { d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, self.pools[i], index) };
         let r = record();
-        unsafe { d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, self.pool, index + 1) };
+        unsafe { d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, self.pools[i], index + 1) };
         r
     }
 
     /// Reads the spans of the last submitted frame (call after it finished).
     pub fn read(&self) -> Result<Vec<Timing>> {
-        let spans = self.spans.borrow();
+        self.read_pool(self.current.get())
+    }
+
+    /// Reads the spans of the oldest frame still on record, the one `FRAMES_IN_FLIGHT - 1`
+    /// frames before the last: with that many frames in flight, the one whose fence the next
+    /// frame waits for (empty until one is recorded).
+    pub fn read_settled(&self) -> Result<Vec<Timing>> {
+        self.read_pool((self.current.get() + 1) % FRAMES_IN_FLIGHT)
+    }
+
+    fn read_pool(&self, i: usize) -> Result<Vec<Timing>> {
+        let spans = self.spans[i].borrow();
         let n = spans.len() as u32 * 2;
         if n == 0 {
             return Ok(Vec::new());
@@ -68,7 +100,7 @@ impl GpuTimer {
         let mut data = vec![0u64; n as usize];
         unsafe {
             self.ctx.device.get_query_pool_results(
-                self.pool,
+                self.pools[i],
                 0,
                 &mut data,
                 vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
@@ -87,7 +119,9 @@ impl GpuTimer {
 
 impl Drop for GpuTimer {
     fn drop(&mut self) {
-        unsafe { self.ctx.device.destroy_query_pool(self.pool, None) };
+        for p in self.pools {
+            unsafe { self.ctx.device.destroy_query_pool(p, None) };
+        }
     }
 }
 

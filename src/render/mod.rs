@@ -167,7 +167,9 @@ pub struct RenderOptions {
     /// Keep last frame's voxels and radiance when nothing they depend on changed (the scene is
     /// static; the lights, the grid and the GI settings are as they were; no temporal filter
     /// still converging; a camera-independent voxelizer): the viewer's frame is then the
-    /// G-buffer and the shading. Off, every frame builds the volume again (bench, render).
+    /// G-buffer and the shading. When only the lights (or the GI settings) changed, the voxels
+    /// are kept and the light's passes run. Off, every frame builds the volume again (bench,
+    /// render).
     pub reuse_volume: bool,
 }
 
@@ -234,6 +236,11 @@ pub struct Renderer {
     /// uniforms found it unchanged (with `reuse_volume`).
     volume_key: std::cell::RefCell<Option<FrameUniforms>>,
     volume_kept: Cell<bool>,
+    /// What the last voxelization depended on ([`Voxelizer::key`]), and whether this frame
+    /// keeps its voxels (with `reuse_volume`): a turning light needs new shadow maps, injection
+    /// and filtering, but not new voxels.
+    voxel_key: std::cell::RefCell<Option<Vec<u8>>>,
+    voxels_kept: Cell<bool>,
     /// Problems worth telling the user (coarse shadow map, subdivided triangles).
     pub notes: Vec<String>,
 }
@@ -401,6 +408,8 @@ impl Renderer {
             previous_view_proj: Cell::new(None),
             volume_key: std::cell::RefCell::new(None),
             volume_kept: Cell::new(false),
+            voxel_key: std::cell::RefCell::new(None),
+            voxels_kept: Cell::new(false),
             notes,
         })
     }
@@ -422,7 +431,7 @@ impl Renderer {
             gi_jitter: self.deferred.as_ref().map_or(glam::Vec4::ZERO, |d| d.jitter_uniform()),
         };
         let u = FrameUniforms::new(&s.camera, &s.lights, &s.mesh.bounds, s.settings.shadow_resolution, &state);
-        self.scene_gpu.uniforms.write_pod(&u);
+        self.scene_gpu.uniforms.set_pod(&u);
         self.voxelizer.set_camera(u.view_proj);
         self.view_proj.set(u.view_proj);
         let key = volume_key(&u, self.options.method);
@@ -431,6 +440,10 @@ impl Renderer {
             && last.as_ref().is_some_and(|k| bytemuck::bytes_of(k) == bytemuck::bytes_of(&key));
         self.volume_kept.set(self.options.reuse_volume && still);
         *last = Some(key);
+        let key = self.voxelizer.key();
+        let mut last = self.voxel_key.borrow_mut();
+        self.voxels_kept.set(self.options.reuse_volume && last.as_ref() == Some(&key));
+        *last = Some(key);
     }
 
     /// Records one whole frame. The passes, in order:
@@ -438,6 +451,8 @@ impl Renderer {
         let t = &self.timer;
         let (scene, targets) = (&self.scene_gpu, &self.targets);
         t.reset(cmd);
+        // The uniforms travel in the command stream: earlier frames may still be running.
+        scene.uniforms.record_upload(cmd);
         t.span(cmd, "total", || {
             if !self.volume_kept.get() {
                 self.record_volume(cmd);
@@ -455,11 +470,14 @@ impl Renderer {
         });
     }
 
-    /// The frame's volume: voxelize, shadow maps, injection, mip filtering and bounces.
+    /// The frame's volume: voxelize (unless the voxels are kept), shadow maps, injection, mip
+    /// filtering and bounces.
     fn record_volume(&self, cmd: vk::CommandBuffer) {
         let t = &self.timer;
         let scene = &self.scene_gpu;
-        t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
+        if !self.voxels_kept.get() {
+            t.span(cmd, "voxelize", || self.voxelizer.record(cmd, scene, &self.voxels));
+        }
         let light = !self.scene.lights.is_empty();
         if light {
             t.span(cmd, "shadow map", || self.shadow.record(cmd, scene));
@@ -524,9 +542,15 @@ impl Renderer {
         memory::MemoryReport::for_grid(&self.voxels.grid, &layout)
     }
 
-    /// The GPU time of each pass of the last finished frame.
+    /// The GPU time of each pass of the last frame (call after it finished).
     pub fn timings(&self) -> Result<Vec<Timing>> {
         self.timer.read()
+    }
+
+    /// The GPU time of each pass of the frame recorded before the last: with frames in
+    /// flight, the one the next frame's fence has seen finish.
+    pub fn settled_timings(&self) -> Result<Vec<Timing>> {
+        self.timer.read_settled()
     }
 
     /// Centres a following volume on `anchor` (no effect on a fitted volume).

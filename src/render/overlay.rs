@@ -7,18 +7,19 @@ use std::cell::Cell;
 use std::sync::Arc;
 
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 
 use crate::config::{OVERLAY_COLUMNS, OVERLAY_ROWS, WORKGROUP_2D};
 use crate::error::Result;
-use crate::gpu::{self, scope, shaders, Binding, Buffer, Context, DescriptorSet, Image, ImageDesc, Pipeline, Stage};
+use crate::gpu::{
+    self, scope, shaders, Binding, Buffer, Context, DescriptorSet, FrameBuffer, Image, ImageDesc, Pipeline, Stage,
+};
 
 pub struct OverlayPass {
     ctx: Arc<Context>,
     pipeline: Pipeline,
     set: DescriptorSet,
     _font: Buffer,
-    text: Buffer,
+    text: FrameBuffer,
     rows: Cell<u32>,
     /// The frame with the text over it.
     pub composite: Image,
@@ -43,8 +44,7 @@ impl OverlayPass {
         let storage = vk::BufferUsageFlags::STORAGE_BUFFER;
         let font = Buffer::from_slice(ctx, "overlay font", storage, &font_words())?;
         let cells = (OVERLAY_COLUMNS * OVERLAY_ROWS) as u64 * 4;
-        let text = Buffer::new(ctx, "overlay text", cells, storage, MemoryLocation::CpuToGpu)?;
-        text.write(0, &vec![0u8; cells as usize]);
+        let text = FrameBuffer::new(ctx, "overlay text", cells, storage)?;
         let c = vk::ShaderStageFlags::COMPUTE;
         let set = DescriptorSet::new(
             ctx,
@@ -59,13 +59,13 @@ impl OverlayPass {
         set.write_storage(0, frame.view.raw);
         set.write_storage(1, composite.view.raw);
         set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &font);
-        set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &text);
+        set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &text.buffer);
         let pipeline = Pipeline::compute(ctx, "overlay", Stage::new(c, shaders::POST_OVERLAY_COMP), &[set.layout], 8)?;
         Ok(OverlayPass { ctx: ctx.clone(), pipeline, set, _font: font, text, rows: Cell::new(0), composite })
     }
 
     /// The lines to draw (cut at the overlay's columns and rows; characters outside ASCII as '?').
-    /// Call between frames: the text buffer is read by the GPU during one.
+    /// Frames recorded from now on draw them.
     pub fn set_text(&self, lines: &[String]) {
         let (cols, rows) = (OVERLAY_COLUMNS as usize, OVERLAY_ROWS as usize);
         let mut cells = vec![0u32; cols * rows];
@@ -74,7 +74,7 @@ impl OverlayPass {
                 cells[r * cols + c] = if ch.is_ascii() && !ch.is_ascii_control() { ch as u32 } else { '?' as u32 };
             }
         }
-        self.text.write(0, bytemuck::cast_slice(&cells));
+        self.text.set(0, bytemuck::cast_slice(&cells));
         self.rows.set(lines.len().min(rows) as u32);
     }
 
@@ -88,6 +88,7 @@ impl OverlayPass {
     pub fn record(&self, cmd: vk::CommandBuffer) {
         let ctx = &self.ctx;
         let rw = scope::COMPUTE_RW;
+        self.text.record_upload(cmd);
         gpu::image_barrier(
             ctx,
             cmd,

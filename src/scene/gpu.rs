@@ -7,11 +7,12 @@ use std::sync::Arc;
 
 use ash::vk;
 use glam::{Mat4, Vec4};
-use gpu_allocator::MemoryLocation;
 
 use crate::config;
 use crate::error::Result;
-use crate::gpu::{commands, Binding, Buffer, Context, DescriptorSet, Image, ImageDesc, Sampler, VertexLayout};
+use crate::gpu::{
+    commands, Binding, Buffer, Context, DescriptorSet, FrameBuffer, Image, ImageDesc, Sampler, VertexLayout,
+};
 use crate::scene::{Draw, Mesh, Scene, Vertex};
 
 /// Mirrors `Material` in `common/frame.glsl`.
@@ -159,7 +160,8 @@ impl MeshBuffers {
 
 pub struct SceneGpu {
     pub mesh: MeshBuffers,
-    pub uniforms: Buffer,
+    /// The frame uniforms, uploaded by each frame's commands (`Renderer::record`).
+    pub uniforms: FrameBuffer,
     /// The surfaces' and the voxel bounce's cone sets (MAX_CONES entries each; the frame
     /// uniforms say how many are used).
     pub cones: Buffer,
@@ -226,12 +228,11 @@ impl SceneGpu {
             .collect();
         let materials =
             commands::upload_buffer(ctx, "materials", vk::BufferUsageFlags::STORAGE_BUFFER, &materials_gpu)?;
-        let uniforms = Buffer::new(
+        let uniforms = FrameBuffer::new(
             ctx,
             "frame uniforms",
             std::mem::size_of::<FrameUniforms>() as u64,
             vk::BufferUsageFlags::UNIFORM_BUFFER,
-            MemoryLocation::CpuToGpu,
         )?;
         let sampler = Sampler::linear_repeat(ctx, "material sampler")?;
         let gi = &scene.settings.gi;
@@ -254,7 +255,7 @@ impl SceneGpu {
                 Binding::new(2, vk::DescriptorType::STORAGE_BUFFER, all),
             ],
         )?;
-        set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &uniforms);
+        set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &uniforms.buffer);
         set.write_buffer(1, vk::DescriptorType::STORAGE_BUFFER, &materials);
         set.write_buffer(2, vk::DescriptorType::STORAGE_BUFFER, &cones);
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;

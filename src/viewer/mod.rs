@@ -205,10 +205,9 @@ impl App {
         // SAFETY: ash-window returns pointers to 'static NUL-terminated extension names.
         let instance_extensions = exts.iter().map(|&p| unsafe { std::ffi::CStr::from_ptr(p) }).collect();
         let ctx = Context::new(&ContextOptions {
-            validation: self.options.validation,
-            device: self.options.device.clone(),
             instance_extensions,
             swapchain: true,
+            ..ContextOptions::from_env(self.options.validation, self.options.device.clone())
         })?;
         println!("device: {} ({})", ctx.info.name, ctx.info.driver);
         let size = window.inner_size();
@@ -462,10 +461,13 @@ impl App {
         let (renderer, ctx) = (&r.renderer, &r.ctx);
         let mut timings = Ok(Vec::new());
         let mut bricks = Ok(());
+        let mut recorded = false;
         let extent = r.swapchain.extent;
         let outcome = r.swapchain.frame(|cmd, image| {
-            timings = renderer.timings();
-            bricks = renderer.voxels.bricks.check();
+            // The frame before the last may still run: read what the one before it left.
+            timings = renderer.settled_timings();
+            bricks = renderer.voxels.bricks.check_settled();
+            recorded = true;
             renderer.update_uniforms();
             renderer.record(cmd);
             match overlay {
@@ -476,7 +478,9 @@ impl App {
                 None => gpu::blit_to_present(ctx, cmd, &renderer.targets.ldr, image, extent),
             }
         })?;
-        r.renderer.frame_recorded();
+        if recorded {
+            r.renderer.frame_recorded();
+        }
         if let Err(e) = bricks {
             if r.renderer.voxels.bricks.storage == crate::voxel::bricks::Storage::Resident {
                 // Geometry outside the census' bricks: census again, and say so.
@@ -484,7 +488,7 @@ impl App {
                 Self::rebuild(r, r.renderer.options)?;
             } else {
                 // A moving volume met more geometry than its pool holds: grow it, and say so.
-                let u = r.renderer.voxels.bricks.usage();
+                let u = r.renderer.voxels.bricks.settled_usage();
                 let grown = u.needed + (u.needed as f64 * crate::voxel::MOVING_POOL_HEADROOM).ceil() as u32;
                 println!("note: {e}; the pool grows to {grown} bricks");
                 let options = RenderOptions { bricks: Some(grown), ..r.renderer.options };

@@ -14,6 +14,7 @@
 //! shaders read it as dense, but binds memory only to the sparse blocks that hold a brick the
 //! census found ([`Residency`], `gpu::sparse`).
 
+use std::cell::Cell;
 use std::sync::Arc;
 
 use ash::vk;
@@ -23,7 +24,7 @@ use gpu_allocator::MemoryLocation;
 use super::VoxelGrid;
 use crate::config::{BRICK_REFUSED, BRICK_SHIFT, BRICK_SIZE};
 use crate::error::{Error, Result};
-use crate::gpu::{self, scope, Buffer, Context, Feature, Image, ImageDesc};
+use crate::gpu::{self, scope, Buffer, Context, Feature, Image, ImageDesc, FRAMES_IN_FLIGHT};
 
 /// Where the per-voxel textures live.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -237,7 +238,9 @@ pub struct Bricks {
     pub storage: Storage,
     /// Header (next slot, capacity, pool shape, brick counts) and one entry per brick.
     pub table: Buffer,
-    readback: Buffer,
+    /// The header's read-back, one per frame in flight, used in turn (`current` the last).
+    readback: Vec<Buffer>,
+    current: Cell<usize>,
     header: [u32; HEADER_WORDS],
     /// Bricks along each axis of the grid.
     pub count: UVec3,
@@ -273,12 +276,32 @@ impl Bricks {
             | vk::BufferUsageFlags::TRANSFER_DST
             | vk::BufferUsageFlags::TRANSFER_SRC;
         let table = Buffer::new(ctx, "brick page table", bytes, usage, MemoryLocation::GpuOnly)?;
-        let readback =
-            Buffer::new(ctx, "brick count", HEADER, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
         let header = [1, capacity, slots.x.trailing_zeros(), slots.y.trailing_zeros(), count.x, count.y, count.z, 0];
-        // Until the first voxelization is read back: no brick needed yet.
-        readback.write(0, bytemuck::cast_slice(&header));
-        Ok(Bricks { ctx: ctx.clone(), storage, table, readback, header, count, capacity, kept: false, residency: None })
+        let readback = |i: usize| -> Result<Buffer> {
+            let b = Buffer::new(
+                ctx,
+                &format!("brick count {i}"),
+                HEADER,
+                vk::BufferUsageFlags::TRANSFER_DST,
+                MemoryLocation::GpuToCpu,
+            )?;
+            // Until the first voxelization is read back: no brick needed yet.
+            b.write(0, bytemuck::cast_slice(&header));
+            Ok(b)
+        };
+        let readback = (0..FRAMES_IN_FLIGHT).map(readback).collect::<Result<Vec<_>>>()?;
+        Ok(Bricks {
+            ctx: ctx.clone(),
+            storage,
+            table,
+            readback,
+            current: Cell::new(0),
+            header,
+            count,
+            capacity,
+            kept: false,
+            residency: None,
+        })
     }
 
     /// Resident storage over `grid`: memory for the blocks of the bricks a census asked for
@@ -406,28 +429,49 @@ impl Bricks {
     }
 
     /// Copies the header to the host after the voxelizers' writes (made visible to transfers
-    /// by the caller's barrier), for [`Bricks::check`].
+    /// by the caller's barrier), for [`Bricks::check`], into the next read-back buffer (the
+    /// other may belong to a frame still in flight, which the host reads).
     pub fn record_readback(&self, cmd: vk::CommandBuffer) {
+        let i = (self.current.get() + 1) % FRAMES_IN_FLIGHT;
+        self.current.set(i);
         gpu::memory_barrier(
             &self.ctx,
             cmd,
             (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::MEMORY_WRITE),
             scope::TRANSFER_READ,
         );
-        gpu::copy_buffer(&self.ctx, cmd, &self.table, &self.readback, HEADER);
+        gpu::copy_buffer(&self.ctx, cmd, &self.table, &self.readback[i], HEADER);
         gpu::memory_barrier(&self.ctx, cmd, scope::TRANSFER_WRITE, scope::HOST_READ);
     }
 
-    /// The pool's use in the last finished voxelization (sparse storage only).
+    /// The pool's use in the last voxelization (sparse storage only; call after it finished).
     pub fn usage(&self) -> BrickUse {
-        let h: &[u32] = bytemuck::cast_slice(&self.readback.read()[..HEADER as usize]);
+        self.usage_of(self.current.get())
+    }
+
+    /// The pool's use in the voxelization recorded before the last: with frames in flight,
+    /// the one whose frame the next frame's fence has seen finish.
+    pub fn settled_usage(&self) -> BrickUse {
+        self.usage_of((self.current.get() + 1) % FRAMES_IN_FLIGHT)
+    }
+
+    fn usage_of(&self, i: usize) -> BrickUse {
+        let h: &[u32] = bytemuck::cast_slice(&self.readback[i].read()[..HEADER as usize]);
         BrickUse { needed: h[0].saturating_sub(1), capacity: self.capacity.saturating_sub(1), stalled: h[7] }
     }
 
-    /// An error when the last finished voxelization needed more bricks than the pool holds
-    /// (its image then misses the refused bricks), or a claim gave up.
+    /// An error when the last voxelization needed more bricks than the pool holds (its image
+    /// then misses the refused bricks), or a claim gave up.
     pub fn check(&self) -> Result<()> {
-        let u = self.usage();
+        self.check_use(self.usage())
+    }
+
+    /// [`Bricks::check`] of [`Bricks::settled_usage`].
+    pub fn check_settled(&self) -> Result<()> {
+        self.check_use(self.settled_usage())
+    }
+
+    fn check_use(&self, u: BrickUse) -> Result<()> {
         if self.storage == Storage::Resident && u.needed > 0 {
             return Err(Error::param(
                 "storage",

@@ -22,7 +22,7 @@ pub use grid::VoxelGrid;
 pub use volume::{occupancy as occupancy_of, unpack_rgb, VoxelVolume};
 
 use crate::error::Result;
-use crate::gpu::{Binding, Buffer, Context, DescriptorSet, Feature};
+use crate::gpu::{Binding, Context, DescriptorSet, Feature, FrameBuffer};
 use crate::scene::gpu::SceneGpu;
 use crate::scene::Scene;
 
@@ -168,20 +168,36 @@ pub struct VoxelParams {
 /// A voxelizer's parameters and the uniform buffer that holds them.
 pub struct ParamsUbo {
     params: VoxelParams,
-    buffer: Buffer,
+    buffer: FrameBuffer,
 }
 
 impl ParamsUbo {
     /// Moves the grid (the volume follows the camera); the voxel size stays.
     pub fn set_origin(&mut self, grid: &VoxelGrid) {
         self.params.origin_size = grid.origin.extend(grid.voxel).into();
-        self.buffer.write(std::mem::offset_of!(VoxelParams, origin_size), bytemuck::bytes_of(&self.params.origin_size));
+        self.buffer.set(std::mem::offset_of!(VoxelParams, origin_size), bytemuck::bytes_of(&self.params.origin_size));
     }
 
-    /// The camera a refinement sees this frame (written alone: the rest may be in flight).
+    /// The camera a refinement sees this frame.
     pub fn set_camera(&self, view_proj: glam::Mat4) {
         let m = view_proj.to_cols_array_2d();
-        self.buffer.write(std::mem::offset_of!(VoxelParams, camera), bytemuck::bytes_of(&m));
+        self.buffer.set(std::mem::offset_of!(VoxelParams, camera), bytemuck::bytes_of(&m));
+    }
+
+    /// Uploads the parameters in the command stream (frames in flight read their own).
+    pub fn record_upload(&self, cmd: vk::CommandBuffer) {
+        self.buffer.record_upload(cmd);
+    }
+
+    /// The parameters the next voxelization reads; the camera only if `camera` (a voxelizer
+    /// that looks through it).
+    fn key(&self, camera: bool) -> Vec<u8> {
+        let mut k = self.buffer.contents();
+        if !camera {
+            let at = std::mem::offset_of!(VoxelParams, camera);
+            k[at..at + std::mem::size_of::<[[f32; 4]; 4]>()].fill(0);
+        }
+        k
     }
 }
 
@@ -204,9 +220,10 @@ pub(crate) fn voxel_set(
             Binding::new(5, vk::DescriptorType::STORAGE_BUFFER, g),
         ],
     )?;
-    let buffer =
-        Buffer::from_slice(ctx, "voxel params", vk::BufferUsageFlags::UNIFORM_BUFFER, std::slice::from_ref(params))?;
-    set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &buffer);
+    let size = std::mem::size_of::<VoxelParams>() as u64;
+    let buffer = FrameBuffer::new(ctx, "voxel params", size, vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    buffer.set_pod(params);
+    set.write_buffer(0, vk::DescriptorType::UNIFORM_BUFFER, &buffer.buffer);
     write_volume(&set, volume);
     Ok((set, ParamsUbo { params: *params, buffer }))
 }
@@ -268,6 +285,11 @@ impl Voxelizer {
 
     /// Records the voxelization of the scene into `volume` (cleared first).
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, volume: &VoxelVolume) {
+        match self {
+            Voxelizer::Tess(t) => t.params.record_upload(cmd),
+            Voxelizer::Raster(r) => r.params.record_upload(cmd),
+            Voxelizer::Points(p) => p.params.record_upload(cmd),
+        }
         volume.record_clear(cmd);
         match self {
             Voxelizer::Tess(t) => t.record(cmd, scene_gpu),
@@ -299,6 +321,17 @@ impl Voxelizer {
     pub fn set_camera(&self, view_proj: glam::Mat4) {
         if let Voxelizer::Points(p) = self {
             p.params.set_camera(view_proj);
+        }
+    }
+
+    /// What the next voxelization depends on besides the scene's geometry (fixed for a
+    /// renderer): its parameters (the grid's place among them) and, for points refined where
+    /// the camera looks, the camera. Equal keys make the same voxels.
+    pub fn key(&self) -> Vec<u8> {
+        match self {
+            Voxelizer::Tess(t) => t.params.key(false),
+            Voxelizer::Raster(r) => r.params.key(false),
+            Voxelizer::Points(p) => p.params.key(p.refines()),
         }
     }
 

@@ -351,6 +351,11 @@ impl PointsVoxelizer {
         }
     }
 
+    /// Whether the points are refined where the camera looks (the voxels then follow it).
+    pub fn refines(&self) -> bool {
+        self.refine.is_some()
+    }
+
     pub fn notes(&self) -> Vec<String> {
         let refined = if self.refine.is_some() { ", refined where the camera looks" } else { "" };
         vec![match self.source {

@@ -510,7 +510,8 @@ pub struct GpuArgs {
     /// Use the first device whose name contains this text.
     #[arg(long)]
     pub device: Option<String>,
-    /// Enable the Khronos validation layer (also: VCT_VALIDATION=1); messages fail the run.
+    /// Enable the Khronos validation layer (also: VCT_VALIDATION=1; VCT_VALIDATION=sync adds
+    /// synchronization validation); messages fail the run.
     #[arg(long)]
     pub validation: bool,
 }
