@@ -32,7 +32,8 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
                                           // cube faces: +x, -x, +y, -y, +z, -z)
     mat4 previous_view_proj; // the previous frame's world-to-clip (screen-space accumulation)
     vec4 gi_jitter;          // xy: the pixel of each GI_SCALE block the diffuse cones trace this
-                             // frame; z: a history to accumulate with (1) or none (0)
+                             // frame; z: a history to accumulate with (1) or none (0);
+                             // w: the camera moved since the last frame (1)
 } frame;
 
 // World position to voxel coordinates (voxel v spans [v, v + 1)).

@@ -1,7 +1,8 @@
 // Surface shading shared by the forward fragment shader and the deferred compute shader
 // (Freed 2018 §4.5, Algorithm 3): emission plus Cook-Torrance direct light (3x3 PCF shadow)
 // plus indirect light by voxel cone tracing — the diffuse cone set (common/gather.glsl) and one
-// specular cone along the reflection (aperture 0.1 pi roughness). Diffuse-cone occlusion gives
+// specular cone along the reflection (aperture 0.1 pi roughness), either traced here or given
+// (traced at a reduced resolution: shade/deferred.comp). Diffuse-cone occlusion gives
 // ambient occlusion.
 // The includer binds `shadow_map` (sampler2DArrayShadow: one layer, or a point light's six), `radiance_volume` (sampler3D), the moment
 // `radiance_moment` and the directional chains' atlas `radiance_aniso` (sampled when the
@@ -44,6 +45,18 @@ float shadow_factor(int j, vec3 p, vec3 n) {
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
 }
 
+// The specular reflectance at normal incidence (dielectric: the material's; metal: its albedo).
+vec3 specular_f0(Material m, vec3 albedo) {
+    return mix(m.specular.rgb, albedo, m.albedo.a);
+}
+
+// The radiance the specular cone (along the reflection of the view direction `v` about `n`,
+// aperture 0.1 pi roughness) brings, before the Fresnel factor.
+vec3 specular_cone(Material m, vec3 uvw, vec3 n, vec3 v, ConeParams p) {
+    float spec_aperture = max(0.1 * PI * m.emissive.a, MIN_SPECULAR_APERTURE);
+    return trace_frame_cone(uvw, n, reflect(-v, n), tan(0.5 * spec_aperture), p).rgb;
+}
+
 // The shading normal turned to the side facing the viewer (surfaces are two-sided).
 vec3 facing_normal(vec3 n, vec3 world) {
     return dot(n, frame.camera_pos.xyz - world) < 0.0 ? -n : n;
@@ -52,8 +65,10 @@ vec3 facing_normal(vec3 n, vec3 world) {
 // Radiance leaving `world` towards the camera (or the debug view chosen in frame.view), for
 // material `m` with its textures already applied: `albedo` and shading normal `n`. `given`:
 // the diffuse cones' gather (rgb light, a occlusion) was traced elsewhere (at a reduced
-// resolution, then upsampled: shade/deferred.comp) and is `gathered_in`.
-vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given, vec4 gathered_in) {
+// resolution, then upsampled: shade/deferred.comp) and is `gathered_in`; `specular_given`: so
+// was the specular cone's light (`specular_cone`), `specular_in`.
+vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given, vec4 gathered_in,
+                         bool specular_given, vec3 specular_in) {
     float roughness = m.emissive.a, metallic = m.albedo.a;
     vec3 v = normalize(frame.camera_pos.xyz - world);
     n = facing_normal(n, world);
@@ -75,12 +90,10 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
         occlusion = gathered.a;
         // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
         diffuse = albedo * (1.0 - metallic) * gathered.rgb;
-        vec3 f0 = mix(m.specular.rgb, albedo, metallic);
+        vec3 f0 = specular_f0(m, albedo);
         if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
-            vec3 r = reflect(-v, n);
-            float spec_aperture = max(0.1 * PI * roughness, MIN_SPECULAR_APERTURE);
-            vec4 c = trace_frame_cone(uvw, n, r, tan(0.5 * spec_aperture), p);
-            specular = fresnel_schlick(f0, dot(n, v)) * c.rgb;
+            vec3 c = specular_given ? specular_in : specular_cone(m, uvw, n, v, p);
+            specular = fresnel_schlick(f0, dot(n, v)) * c;
         }
     }
 
@@ -98,7 +111,7 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
 }
 
 vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
-    return shade_surface_given(m, albedo, n, world, false, vec4(0.0));
+    return shade_surface_given(m, albedo, n, world, false, vec4(0.0), false, vec3(0.0));
 }
 
 #endif

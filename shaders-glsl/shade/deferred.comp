@@ -6,7 +6,11 @@
 // shading pass (PASS SHADE) upsamples them edge-aware (joint bilateral: of the four nearest
 // traced pixels, only those on the pixel's own surface count, by their normal and their
 // distance from its tangent plane); where none does (a silhouette, a thin object) the nearest
-// stands in; a traced pixel shows its own trace. The specular cone stays at full resolution.
+// stands in; a traced pixel shows its own trace. With SPECULAR_REDUCED the specular cone
+// is traced with them (into `specular_low`, before the Fresnel factor, which each pixel applies
+// with its own material) and upsampled and accumulated alike; otherwise every pixel traces its
+// own. On Sponza the specular cone (narrow, so many steps) was 70% of the shading pass (640x360,
+// scale 4: 920 ms with it, 275 without; docs/benchmarks.md).
 //
 // ACCUMULATE (screen-space accumulation, `--gi-accumulate`; PASS ACCUMULATE, between the two,
 // writes each pixel's gather to `history_out`, which the shading pass reads): the traced pixel
@@ -44,12 +48,18 @@ layout(set = 2, binding = 10, rgba16f) uniform readonly image2D history_in;
 layout(set = 2, binding = 11, rgba16f) uniform image2D history_out;
 layout(set = 2, binding = 12, rgba32ui) uniform readonly uimage2D surface_in;
 layout(set = 2, binding = 13, rgba32ui) uniform writeonly uimage2D surface_out;
+// The specular cone's light (rgb; a: 1 where a cone was traced) at the traced pixels, and its
+// history (as `history_in`, `history_out`).
+layout(set = 2, binding = 14, rgba16f) uniform image2D specular_low;
+layout(set = 2, binding = 15, rgba16f) uniform readonly image2D specular_history_in;
+layout(set = 2, binding = 16, rgba16f) uniform image2D specular_history_out;
 
 #include "shading.glsl"
 
 layout(constant_id = 3) const uint GI_SCALE = 1;
 layout(constant_id = 4) const uint PASS = 0;
 layout(constant_id = 5) const bool ACCUMULATE = false;
+layout(constant_id = 6) const bool SPECULAR_REDUCED = false;
 const uint PASS_SHADE = 0;
 const uint PASS_TRACE = 1;
 const uint PASS_ACCUMULATE = 2;
@@ -77,34 +87,47 @@ ivec2 traced_pixel(ivec2 q) {
 // (a silhouette, an object thinner than the traced grid) the one nearest this pixel's tangent
 // plane stands in: tracing here instead would cost every pixel on a CPU driver, which runs a
 // branch for all lanes when any lane takes it. `own`: `px` was traced itself (the value is its
-// trace).
-vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own) {
+// trace). `spec`: the specular cone's light alike (SPECULAR_REDUCED), from the traced pixels
+// that traced one (a material without specular traces none).
+vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec) {
     ivec2 size = imageSize(diffuse_low);
     vec2 f = vec2(px - ivec2(frame.gi_jitter.xy)) / float(GI_SCALE);
     ivec2 base = ivec2(floor(f));
     ivec2 cell = clamp(base, ivec2(0), size - 1);
     own = traced_pixel(cell) == px;
-    if (own) return imageLoad(diffuse_low, cell);
+    spec = vec4(0.0);
+    if (own) {
+        if (SPECULAR_REDUCED) spec = imageLoad(specular_low, cell);
+        return imageLoad(diffuse_low, cell);
+    }
     vec2 t = f - vec2(base);
     float plane = 0.5 * frame.voxel_origin.w;
-    vec4 sum = vec4(0.0), nearest = vec4(0.0);
-    float total = 0.0, closest = 1e30;
+    vec4 sum = vec4(0.0), nearest = vec4(0.0), spec_sum = vec4(0.0), spec_nearest = vec4(0.0);
+    float total = 0.0, closest = 1e30, spec_total = 0.0, spec_closest = 1e30;
     for (int i = 0; i < 4; i++) {
         ivec2 o = ivec2(i & 1, i >> 1);
         ivec2 q = clamp(base + o, ivec2(0), size - 1);
         vec3 wq, nq;
         if (!surface_at(traced_pixel(q), wq, nq)) continue;
         vec4 g = imageLoad(diffuse_low, q);
+        vec4 s = SPECULAR_REDUCED ? imageLoad(specular_low, q) : vec4(0.0);
         float d = abs(dot(wq - world, n)) + plane * max(0.9 - dot(nq, n), 0.0) * 10.0;
         if (d < closest) {
             closest = d;
             nearest = g;
         }
+        if (s.a > 0.0 && d < spec_closest) {
+            spec_closest = d;
+            spec_nearest = s;
+        }
         if (dot(nq, n) < 0.9 || abs(dot(wq - world, n)) > plane) continue;
         float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y) + 1e-4;
         sum += w * g;
         total += w;
+        spec_sum += w * s.a * s;
+        spec_total += w * s.a;
     }
+    spec = spec_total > 0.0 ? spec_sum / spec_total : spec_nearest;
     return total > 0.0 ? sum / total : nearest;
 }
 
@@ -133,14 +156,14 @@ vec3 unpack_surface_normal(uint w) {
 // Measured and dropped: nearest-pixel reprojection (after a 35-degree turn the kept history was
 // worse than none, 1.5% against 1.2%), and projecting the rebuilt position alone (a few
 // hundredths of a pixel off, so resampling it every frame blurred a still view by 0.15%).
-bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h) {
+bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h, out vec4 hs) {
     vec4 clip = frame.previous_view_proj * vec4(world, 1.0);
     vec4 now = frame.view_proj * vec4(world, 1.0);
     if (clip.w <= 0.0) return false;
     vec2 f = vec2(px) + (clip.xy / clip.w - now.xy / now.w) * 0.5 * frame.viewport.xy;
     ivec2 base = ivec2(floor(f));
     vec2 t = f - vec2(base);
-    vec4 sum = vec4(0.0);
+    vec4 sum = vec4(0.0), spec_sum = vec4(0.0);
     float total = 0.0;
     for (int i = 0; i < 4; i++) {
         ivec2 o = ivec2(i & 1, i >> 1);
@@ -152,9 +175,11 @@ bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h) {
         vec3 wp = uintBitsToFloat(s.xyz);
         if (dot(unpack_surface_normal(s.w), n) < 0.9 || abs(dot(wp - world, n)) > 0.5 * frame.voxel_origin.w) continue;
         sum += w * imageLoad(history_in, p);
+        if (SPECULAR_REDUCED) spec_sum += w * imageLoad(specular_history_in, p);
         total += w;
     }
     h = sum / max(total, 1e-30);
+    hs = spec_sum / max(total, 1e-30);
     return total > 0.0;
 }
 
@@ -163,11 +188,23 @@ void main() {
     if (PASS == PASS_TRACE) {
         if (any(greaterThanEqual(px, imageSize(diffuse_low)))) return;
         vec3 world, n;
-        vec4 g = vec4(0.0);
-        if (frame.view.z > 0.5 && surface_at(traced_pixel(px), world, n)) {
-            g = gather_diffuse(world_to_uvw(world), n, frame_cone_params());
+        vec4 g = vec4(0.0), s = vec4(0.0);
+        ivec2 traced = traced_pixel(px);
+        if (frame.view.z > 0.5 && surface_at(traced, world, n)) {
+            vec3 uvw = world_to_uvw(world);
+            ConeParams p = frame_cone_params();
+            g = gather_diffuse(uvw, n, p);
+            if (SPECULAR_REDUCED) {
+                vec4 a = imageLoad(gbuffer_albedo, traced);
+                Material m = materials[uint(a.w + 0.5)];
+                vec3 f0 = specular_f0(m, a.rgb);
+                if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
+                    s = vec4(specular_cone(m, uvw, n, normalize(frame.camera_pos.xyz - world), p), 1.0);
+                }
+            }
         }
         imageStore(diffuse_low, px, g);
+        if (SPECULAR_REDUCED) imageStore(specular_low, px, s);
         return;
     }
     if (any(greaterThanEqual(px, imageSize(hdr)))) return;
@@ -177,17 +214,23 @@ void main() {
     if (PASS == PASS_ACCUMULATE) {
         // This frame's gather (the traced pixel's own, the kept trace, or upsampled) into
         // `history_out`, which the shading pass then reads.
-        vec4 gathered = vec4(0.0);
+        vec4 gathered = vec4(0.0), spec = vec4(0.0);
         bool kept = false;
         if (found && given) {
-            gathered = upsampled_gather(px, world, n, kept);
-            vec4 h;
-            if (!kept && frame.gi_jitter.z > 0.5 && history_at(px, world, n, h)) {
+            gathered = upsampled_gather(px, world, n, kept, spec);
+            vec4 h, hs;
+            if (!kept && frame.gi_jitter.z > 0.5 && history_at(px, world, n, h, hs)) {
                 gathered = h;
+                // The specular cone looks along the reflected view: a trace from another camera
+                // position is of another direction. While the camera moves, this frame's
+                // upsampled traces stand in (on Sponza orbiting 0.5 degrees a frame, the kept
+                // traces were 12.7% off full resolution's indirect light; docs/benchmarks.md).
+                if (frame.gi_jitter.w < 0.5) spec = hs;
                 kept = true;
             }
         }
         imageStore(history_out, px, gathered);
+        if (SPECULAR_REDUCED) imageStore(specular_history_out, px, spec);
         uvec4 surface = uvec4(floatBitsToUint(world), pack_surface_normal(n));
         imageStore(surface_out, px, kept ? surface : uvec4(0u));
         return;
@@ -198,10 +241,16 @@ void main() {
     }
     vec4 a = imageLoad(gbuffer_albedo, px);
     Material m = materials[uint(a.w + 0.5)];
-    vec4 gathered = vec4(0.0);
+    vec4 gathered = vec4(0.0), spec = vec4(0.0);
     if (given) {
         bool own;
-        gathered = ACCUMULATE ? imageLoad(history_out, px) : upsampled_gather(px, world, n, own);
+        if (ACCUMULATE) {
+            gathered = imageLoad(history_out, px);
+            if (SPECULAR_REDUCED) spec = imageLoad(specular_history_out, px);
+        } else {
+            gathered = upsampled_gather(px, world, n, own, spec);
+        }
     }
-    imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, given, gathered), 1.0));
+    bool spec_given = SPECULAR_REDUCED && given;
+    imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, given, gathered, spec_given, spec.rgb), 1.0));
 }

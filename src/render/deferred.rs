@@ -3,7 +3,8 @@
 //! index; shading normal + camera distance), then one compute thread per pixel running the same
 //! `shade_surface` (common/shading.glsl) as the forward path. With a GI scale s > 1 the diffuse
 //! cones are traced first at one pixel in s² and upsampled edge-aware in the shading pass (the
-//! reduced-resolution indirect light engines that ship cone tracing use; shade/deferred.comp).
+//! reduced-resolution indirect light engines that ship cone tracing use; shade/deferred.comp),
+//! and by default the specular cone with them (`RenderOptions::reduced_specular`).
 //! With accumulation on (`--gi-accumulate`) the traced pixel of each block moves frame by frame
 //! ([`jitter`]) and a pass of its own, between tracing and shading, lets every pixel keep its
 //! last trace in a history reprojected with the camera and rejected on disocclusion: two
@@ -57,6 +58,8 @@ pub fn jitter(scale: u32, frame: u64) -> [u32; 2] {
 struct History {
     gather: [Image; 2],
     surface: [Image; 2],
+    /// The specular cone's light, when it is traced with the diffuse cones.
+    specular: [Image; 2],
 }
 
 pub struct DeferredShadePass {
@@ -69,6 +72,8 @@ pub struct DeferredShadePass {
     accumulate_pipeline: Option<Pipeline>,
     /// Their gather (a 1×1 stand-in at scale 1).
     diffuse_low: Image,
+    /// The specular cone's light at the same pixels, when it follows the scale (else 1×1).
+    specular_low: Image,
     /// Two sets, one a parity of the frame count: each reads one history pair, writes the other.
     set: DescriptorSet,
     albedo: Image,
@@ -85,8 +90,9 @@ pub struct DeferredShadePass {
 impl DeferredShadePass {
     /// `anisotropic`: cones sample the six directional chains (specialization constant);
     /// `gi_scale`: the diffuse cones run at one pixel in `gi_scale`² (1, 2 or 4); `accumulate`:
-    /// screen-space accumulation of them over frames (with `gi_scale` > 1).
-    #[allow(clippy::too_many_arguments)] // the passes it reads, and three switches
+    /// screen-space accumulation of them over frames (with `gi_scale` > 1); `reduced_specular`:
+    /// the specular cone runs with them (else at every pixel).
+    #[allow(clippy::too_many_arguments)] // the passes it reads, and four switches
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
@@ -97,6 +103,7 @@ impl DeferredShadePass {
         anisotropic: bool,
         gi_scale: u32,
         accumulate: bool,
+        reduced_specular: bool,
     ) -> Result<Self> {
         if !matches!(gi_scale, 1 | 2 | 4) {
             return Err(crate::Error::param("gi-scale", format!("must be 1, 2 or 4, got {gi_scale}")));
@@ -149,22 +156,37 @@ impl DeferredShadePass {
                 Binding::new(11, storage, c),
                 Binding::new(12, storage, c),
                 Binding::new(13, storage, c),
+                Binding::new(14, storage, c),
+                Binding::new(15, storage, c),
+                Binding::new(16, storage, c),
             ],
             2,
         )?;
         let (lw, lh) =
             if gi_scale > 1 { (targets.width.div_ceil(gi_scale), targets.height.div_ceil(gi_scale)) } else { (1, 1) };
-        let diffuse_low = Image::new(
-            ctx,
-            "diffuse gather (reduced)",
-            ImageDesc::d2(vk::Format::R16G16B16A16_SFLOAT, lw, lh, vk::ImageUsageFlags::STORAGE),
-        )?;
+        let low = |name: &str, (w, h)| {
+            Image::new(ctx, name, ImageDesc::d2(vk::Format::R16G16B16A16_SFLOAT, w, h, vk::ImageUsageFlags::STORAGE))
+        };
+        let reduced_specular = reduced_specular && gi_scale > 1;
+        let diffuse_low = low("diffuse gather (reduced)", (lw, lh))?;
+        let specular_low = low("specular cone (reduced)", if reduced_specular { (lw, lh) } else { (1, 1) })?;
         let (hw, hh) = if accumulate { (targets.width, targets.height) } else { (1, 1) };
         let keep = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST;
-        let image = |name: &str, format| Image::new(ctx, name, ImageDesc::d2(format, hw, hh, keep));
+        let image = |name: &str, format, (w, h)| Image::new(ctx, name, ImageDesc::d2(format, w, h, keep));
+        let (full, spec) = ((hw, hh), if reduced_specular { (hw, hh) } else { (1, 1) });
         let history = History {
-            gather: [image("diffuse history a", HISTORY_FORMAT)?, image("diffuse history b", HISTORY_FORMAT)?],
-            surface: [image("history surface a", SURFACE_FORMAT)?, image("history surface b", SURFACE_FORMAT)?],
+            gather: [
+                image("diffuse history a", HISTORY_FORMAT, full)?,
+                image("diffuse history b", HISTORY_FORMAT, full)?,
+            ],
+            surface: [
+                image("history surface a", SURFACE_FORMAT, full)?,
+                image("history surface b", SURFACE_FORMAT, full)?,
+            ],
+            specular: [
+                image("specular history a", HISTORY_FORMAT, spec)?,
+                image("specular history b", HISTORY_FORMAT, spec)?,
+            ],
         };
         let shadow_sampler = Sampler::shadow(ctx, "deferred shadow sampler")?;
         for i in 0..2 {
@@ -183,11 +205,14 @@ impl DeferredShadePass {
             set.write_storage_at(i, 11, history.gather[1 - i].view.raw);
             set.write_storage_at(i, 12, history.surface[i].view.raw);
             set.write_storage_at(i, 13, history.surface[1 - i].view.raw);
+            set.write_storage_at(i, 14, specular_low.view.raw);
+            set.write_storage_at(i, 15, history.specular[i].view.raw);
+            set.write_storage_at(i, 16, history.specular[1 - i].view.raw);
         }
         let [aniso, sparse, resident] = bricks.spec(anisotropic as u32);
         let layouts = [scene.set.layout, scene.material_sets.layout, set.layout];
         let pipeline = |name: &str, pass: u32| {
-            let spec = [aniso, sparse, resident, gi_scale, pass, accumulate as u32];
+            let spec = [aniso, sparse, resident, gi_scale, pass, accumulate as u32, reduced_specular as u32];
             Pipeline::compute(ctx, name, Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&spec), &layouts, 0)
         };
         let shade_pipeline = pipeline("deferred shade", 0)?;
@@ -202,6 +227,7 @@ impl DeferredShadePass {
             trace_pipeline,
             accumulate_pipeline,
             diffuse_low,
+            specular_low,
             set,
             albedo,
             normal,
@@ -277,13 +303,15 @@ impl DeferredShadePass {
         let ctx = &self.ctx;
         targets.hdr_for_compute(ctx, cmd);
         let rw = scope::COMPUTE_RW;
-        gpu::image_barrier(ctx, cmd, &self.diffuse_low, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        for low in [&self.diffuse_low, &self.specular_low] {
+            gpu::image_barrier(ctx, cmd, low, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        }
         let frames = self.frames.get();
         self.frames.set(frames + 1);
         if frames == 0 {
             // No surface stored: the first frame finds no history (and every image is GENERAL).
             let h = &self.history;
-            for img in h.gather.iter().chain(&h.surface) {
+            for img in h.gather.iter().chain(&h.surface).chain(&h.specular) {
                 gpu::clear_to_general(ctx, cmd, img, rw);
             }
             gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, rw);

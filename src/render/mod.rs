@@ -164,6 +164,11 @@ pub struct RenderOptions {
     /// Accumulate the reduced-resolution diffuse cones over frames in screen space (the traced
     /// pixel moves through each block; the history follows the camera; `gi_scale` > 1).
     pub gi_accumulate: bool,
+    /// With `gi_scale` > 1, the specular cone is traced with the diffuse cones at one pixel in
+    /// `gi_scale`², upsampled and accumulated alike (each pixel applies its own Fresnel
+    /// factor); off, every pixel traces its own. On: on Sponza the per-pixel specular cone was
+    /// 70% of the shading time (docs/benchmarks.md, "Diffuse cones at a reduced resolution").
+    pub reduced_specular: bool,
     /// Keep last frame's voxels and radiance when nothing they depend on changed (the scene is
     /// static; the lights, the grid and the GI settings are as they were; no temporal filter
     /// still converging; a camera-independent voxelizer): the viewer's frame is then the
@@ -200,6 +205,7 @@ impl Default for RenderOptions {
             bricks: None,
             gi_scale: 1,
             gi_accumulate: false,
+            reduced_specular: true,
             reuse_volume: false,
         }
     }
@@ -356,6 +362,7 @@ impl Renderer {
                     aniso,
                     s,
                     acc,
+                    options.reduced_specular,
                 )?)
             }
             Tracing::Forward if options.gi_scale != 1 || options.gi_accumulate => {
@@ -430,7 +437,10 @@ impl Renderer {
             previous_view_proj: self.previous_view_proj.get(),
             gi_jitter: self.deferred.as_ref().map_or(glam::Vec4::ZERO, |d| d.jitter_uniform()),
         };
-        let u = FrameUniforms::new(&s.camera, &s.lights, &s.mesh.bounds, s.settings.shadow_resolution, &state);
+        let mut u = FrameUniforms::new(&s.camera, &s.lights, &s.mesh.bounds, s.settings.shadow_resolution, &state);
+        // Whether the camera moved since the last frame: the accumulated specular cone, which
+        // depends on where the camera looks from, keeps no history then.
+        u.gi_jitter.w = (self.previous_view_proj.get() != Some(u.view_proj)) as u32 as f32;
         self.scene_gpu.uniforms.set_pod(&u);
         self.voxelizer.set_camera(u.view_proj);
         self.view_proj.set(u.view_proj);
@@ -582,6 +592,7 @@ impl Renderer {
                 self.scene.settings.gi.filter == Filter::Aniso,
                 self.options.gi_scale,
                 self.options.gi_accumulate,
+                self.options.reduced_specular,
             )?),
             Tracing::Forward => None,
         };

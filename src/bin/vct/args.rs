@@ -154,7 +154,7 @@ pub struct SceneArgs {
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
     /// Trace the diffuse cones at one pixel in 1, 4 or 16 (1|2|4), upsampled edge-aware on the
-    /// G-buffer's depth and normal (deferred tracing; the specular cone stays per pixel).
+    /// G-buffer's depth and normal (deferred tracing; the specular cone too, see --gi-specular).
     /// Default: 1 for `render` (a headless frame affords every pixel), 4 for `view`.
     #[arg(long)]
     pub gi_scale: Option<u32>,
@@ -165,6 +165,10 @@ pub struct SceneArgs {
     /// --frames), on for `view`.
     #[arg(long, value_enum)]
     pub gi_accumulate: Option<OnOff>,
+    /// With --gi-scale 2 or 4: trace the specular cone with the diffuse cones, upsampled and
+    /// accumulated alike (reduced), or at every pixel (full).
+    #[arg(long, value_enum, default_value = "reduced")]
+    pub gi_specular: SpecularArg,
     /// Mip filtering over the occupied texels of each level, or over every texel (dense).
     #[arg(long, value_enum, default_value = "occupied")]
     pub work: WorkArg,
@@ -294,6 +298,12 @@ pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = (parse(w)?, parse(h)?);
     vct::scene::check_image_size(w, h).map_err(|e| e.to_string())?;
     Ok((w, h))
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SpecularArg {
+    Reduced,
+    Full,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

@@ -84,6 +84,7 @@ fn render(args: RenderArgs) -> Result<()> {
         bricks: args.scene.method.bricks,
         gi_scale: args.scene.gi_scale.unwrap_or(1),
         gi_accumulate: args.scene.gi_accumulate == Some(OnOff::On),
+        reduced_specular: args.scene.gi_specular == SpecularArg::Reduced,
         reuse_volume: args.reuse_volume == OnOff::On,
     };
     let mut choice = None;
@@ -235,6 +236,7 @@ fn view(args: ViewArgs) -> Result<()> {
             // resolution at 1280x720, and a still view converges to full resolution.
             gi_scale: args.scene.gi_scale.unwrap_or(4),
             gi_accumulate: args.scene.gi_accumulate.map_or(args.scene.gi_scale != Some(1), |a| a == OnOff::On),
+            reduced_specular: args.scene.gi_specular == SpecularArg::Reduced,
             // A static scene's volume is built again only when the lights, grid or GI change.
             reuse_volume: true,
             ..Default::default()
