@@ -95,6 +95,37 @@ impl Drop for Buffer {
 /// Frames the viewer keeps in flight: while the GPU runs one, the CPU records the next.
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
+/// Which of `FRAMES_IN_FLIGHT` per-frame copies of something (a query pool, a read-back) frames
+/// use, in turn.
+pub struct FrameSlot(std::cell::Cell<usize>);
+
+impl Default for FrameSlot {
+    fn default() -> Self {
+        // The first `advance` gives copy 0.
+        FrameSlot(std::cell::Cell::new(FRAMES_IN_FLIGHT - 1))
+    }
+}
+
+impl FrameSlot {
+    /// A new frame takes the next copy; returns it.
+    pub fn advance(&self) -> usize {
+        let i = (self.0.get() + 1) % FRAMES_IN_FLIGHT;
+        self.0.set(i);
+        i
+    }
+
+    /// The copy of the last frame (the one being recorded, or the last recorded).
+    pub fn last(&self) -> usize {
+        self.0.get()
+    }
+
+    /// The copy of the frame `FRAMES_IN_FLIGHT - 1` before the last: the one the next frame's
+    /// fence has seen finish.
+    pub fn settled(&self) -> usize {
+        (self.0.get() + 1) % FRAMES_IN_FLIGHT
+    }
+}
+
 /// A small buffer of per-frame parameters (uniforms, overlay text) that the host may change at
 /// any time, even while earlier frames that read it are still running: the host keeps a copy,
 /// and each frame's commands upload it (`vkCmdUpdateBuffer`) between barriers, so every frame

@@ -13,7 +13,7 @@ pub mod sparse;
 pub mod swapchain;
 pub mod timer;
 
-pub use buffer::{Buffer, FrameBuffer, FRAMES_IN_FLIGHT};
+pub use buffer::{Buffer, FrameBuffer, FrameSlot, FRAMES_IN_FLIGHT};
 pub use commands::{
     blit_to_present, clear_mips, clear_to_general, copy_buffer, copy_buffer_at, copy_level, discard_to_depth, dispatch,
     dispatch_indirect, fill_buffer, fill_buffer_at, image_barrier, image_barrier_mips, memory_barrier, read_buffer,

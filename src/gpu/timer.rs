@@ -1,12 +1,12 @@
 //! GPU timestamp timers: one named span per pass, read back after the frame as milliseconds;
 //! a query pool per frame in flight.
 
-use std::cell::{Cell, RefCell};
+use std::cell::RefCell;
 use std::sync::Arc;
 
 use ash::vk;
 
-use super::{Context, FRAMES_IN_FLIGHT};
+use super::{Context, FrameSlot, FRAMES_IN_FLIGHT};
 use crate::error::{Result, VkContext};
 
 pub struct GpuTimer {
@@ -15,7 +15,7 @@ pub struct GpuTimer {
     /// its fence has passed, while the next frame writes the other pool.
     pools: [vk::QueryPool; FRAMES_IN_FLIGHT],
     /// The pool the last (or current) frame records into.
-    current: Cell<usize>,
+    current: FrameSlot,
     capacity: u32,
     period_ns: f64,
     /// Per pool, (name, first query index) of the spans its frame recorded.
@@ -50,7 +50,7 @@ impl GpuTimer {
         Ok(GpuTimer {
             ctx: ctx.clone(),
             pools,
-            current: Cell::new(FRAMES_IN_FLIGHT - 1),
+            current: FrameSlot::default(),
             capacity,
             period_ns: ctx.info.limits.timestamp_period as f64,
             spans: Default::default(),
@@ -60,15 +60,14 @@ impl GpuTimer {
     /// Starts a frame's timing in the next pool: forgets that pool's spans and resets its
     /// queries (record before the first span).
     pub fn reset(&self, cmd: vk::CommandBuffer) {
-        let i = (self.current.get() + 1) % FRAMES_IN_FLIGHT;
-        self.current.set(i);
+        let i = self.current.advance();
         self.spans[i].borrow_mut().clear();
         unsafe { self.ctx.device.cmd_reset_query_pool(cmd, self.pools[i], 0, self.capacity) };
     }
 
     /// Runs `record` between two timestamps named `name`.
     pub fn span<R>(&self, cmd: vk::CommandBuffer, name: &str, record: impl FnOnce() -> R) -> R {
-        let i = self.current.get();
+        let i = self.current.last();
         let index = self.spans[i].borrow().len() as u32 * 2;
         assert!(index + 1 < self.capacity, "more timer spans than the pool holds");
         self.spans[i].borrow_mut().push((name.to_string(), index));
@@ -81,14 +80,14 @@ impl GpuTimer {
 
     /// Reads the spans of the last submitted frame (call after it finished).
     pub fn read(&self) -> Result<Vec<Timing>> {
-        self.read_pool(self.current.get())
+        self.read_pool(self.current.last())
     }
 
     /// Reads the spans of the oldest frame still on record, the one `FRAMES_IN_FLIGHT - 1`
     /// frames before the last: with that many frames in flight, the one whose fence the next
     /// frame waits for (empty until one is recorded).
     pub fn read_settled(&self) -> Result<Vec<Timing>> {
-        self.read_pool((self.current.get() + 1) % FRAMES_IN_FLIGHT)
+        self.read_pool(self.current.settled())
     }
 
     fn read_pool(&self, i: usize) -> Result<Vec<Timing>> {

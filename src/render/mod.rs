@@ -238,24 +238,41 @@ pub struct Renderer {
     /// accumulation's reprojection.
     view_proj: Cell<glam::Mat4>,
     previous_view_proj: Cell<Option<glam::Mat4>>,
-    /// What the last built volume depended on ([`volume_key`]), and whether this frame's
-    /// uniforms found it unchanged (with `reuse_volume`).
-    volume_key: std::cell::RefCell<Option<FrameUniforms>>,
-    volume_kept: Cell<bool>,
-    /// What the last voxelization depended on ([`Voxelizer::key`]), and whether this frame
-    /// keeps its voxels (with `reuse_volume`): a turning light needs new shadow maps, injection
-    /// and filtering, but not new voxels.
-    voxel_key: std::cell::RefCell<Option<Vec<u8>>>,
-    voxels_kept: Cell<bool>,
+    /// Whether this frame keeps last frame's volume ([`volume_key`]).
+    volume_kept: Kept,
+    /// Whether this frame keeps last frame's voxels ([`Voxelizer::key`]): a turning light
+    /// needs new shadow maps, injection and filtering, but not new voxels.
+    voxels_kept: Kept,
     /// Problems worth telling the user (coarse shadow map, subdivided triangles).
     pub notes: Vec<String>,
 }
 
+/// What something a frame builds depended on when it was last built, and whether this frame
+/// keeps it (`RenderOptions::reuse_volume`).
+#[derive(Default)]
+struct Kept {
+    key: std::cell::RefCell<Option<Vec<u8>>>,
+    kept: Cell<bool>,
+}
+
+impl Kept {
+    /// This frame's key: what was built is kept when `reuse` and the key is the last one.
+    fn update(&self, key: Vec<u8>, reuse: bool) {
+        let mut last = self.key.borrow_mut();
+        self.kept.set(reuse && last.as_ref() == Some(&key));
+        *last = Some(key);
+    }
+
+    fn get(&self) -> bool {
+        self.kept.get()
+    }
+}
+
 /// What a frame's volume depends on, from its uniforms: all but the camera (unless the voxelizer
-/// sees through it: points with refinement) and the screen-space state.
-fn volume_key(u: &FrameUniforms, method: VoxelizeMethod) -> FrameUniforms {
+/// sees through it, `camera`: points with refinement) and the screen-space state.
+fn volume_key(u: &FrameUniforms, camera: bool) -> Vec<u8> {
     let mut k = *u;
-    if !matches!(method, VoxelizeMethod::Points { refine: true, .. }) {
+    if !camera {
         k.view_proj = glam::Mat4::ZERO;
         k.inv_view_proj = glam::Mat4::ZERO;
         k.camera_pos = glam::Vec4::ZERO;
@@ -264,7 +281,7 @@ fn volume_key(u: &FrameUniforms, method: VoxelizeMethod) -> FrameUniforms {
     k.view = glam::Vec4::ZERO;
     k.previous_view_proj = glam::Mat4::ZERO;
     k.gi_jitter = glam::Vec4::ZERO;
-    k
+    bytemuck::bytes_of(&k).to_vec()
 }
 
 /// World size of one shadow-map texel at the farthest scene point (for the injection warning).
@@ -413,10 +430,8 @@ impl Renderer {
             previous_origin: Cell::new(origin),
             view_proj: Cell::new(glam::Mat4::IDENTITY),
             previous_view_proj: Cell::new(None),
-            volume_key: std::cell::RefCell::new(None),
-            volume_kept: Cell::new(false),
-            voxel_key: std::cell::RefCell::new(None),
-            voxels_kept: Cell::new(false),
+            volume_kept: Kept::default(),
+            voxels_kept: Kept::default(),
             notes,
         })
     }
@@ -444,16 +459,11 @@ impl Renderer {
         self.scene_gpu.uniforms.set_pod(&u);
         self.voxelizer.set_camera(u.view_proj);
         self.view_proj.set(u.view_proj);
-        let key = volume_key(&u, self.options.method);
-        let mut last = self.volume_key.borrow_mut();
-        let still = s.settings.gi.temporal >= 1.0
-            && last.as_ref().is_some_and(|k| bytemuck::bytes_of(k) == bytemuck::bytes_of(&key));
-        self.volume_kept.set(self.options.reuse_volume && still);
-        *last = Some(key);
-        let key = self.voxelizer.key();
-        let mut last = self.voxel_key.borrow_mut();
-        self.voxels_kept.set(self.options.reuse_volume && last.as_ref() == Some(&key));
-        *last = Some(key);
+        let reuse = self.options.reuse_volume;
+        // A temporal filter still converging changes the volume every frame.
+        let volume = volume_key(&u, self.voxelizer.sees_camera());
+        self.volume_kept.update(volume, reuse && s.settings.gi.temporal >= 1.0);
+        self.voxels_kept.update(self.voxelizer.key(), reuse);
     }
 
     /// Records one whole frame. The passes, in order:

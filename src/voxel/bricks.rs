@@ -14,7 +14,6 @@
 //! shaders read it as dense, but binds memory only to the sparse blocks that hold a brick the
 //! census found ([`Residency`], `gpu::sparse`).
 
-use std::cell::Cell;
 use std::sync::Arc;
 
 use ash::vk;
@@ -24,7 +23,7 @@ use gpu_allocator::MemoryLocation;
 use super::VoxelGrid;
 use crate::config::{BRICK_REFUSED, BRICK_SHIFT, BRICK_SIZE};
 use crate::error::{Error, Result};
-use crate::gpu::{self, scope, Buffer, Context, Feature, Image, ImageDesc, FRAMES_IN_FLIGHT};
+use crate::gpu::{self, scope, Buffer, Context, Feature, FrameSlot, Image, ImageDesc, FRAMES_IN_FLIGHT};
 
 /// Where the per-voxel textures live.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -240,7 +239,7 @@ pub struct Bricks {
     pub table: Buffer,
     /// The header's read-back, one per frame in flight, used in turn (`current` the last).
     readback: Vec<Buffer>,
-    current: Cell<usize>,
+    current: FrameSlot,
     header: [u32; HEADER_WORDS],
     /// Bricks along each axis of the grid.
     pub count: UVec3,
@@ -295,7 +294,7 @@ impl Bricks {
             storage,
             table,
             readback,
-            current: Cell::new(0),
+            current: FrameSlot::default(),
             header,
             count,
             capacity,
@@ -432,8 +431,7 @@ impl Bricks {
     /// by the caller's barrier), for [`Bricks::check`], into the next read-back buffer (the
     /// other may belong to a frame still in flight, which the host reads).
     pub fn record_readback(&self, cmd: vk::CommandBuffer) {
-        let i = (self.current.get() + 1) % FRAMES_IN_FLIGHT;
-        self.current.set(i);
+        let i = self.current.advance();
         gpu::memory_barrier(
             &self.ctx,
             cmd,
@@ -446,13 +444,13 @@ impl Bricks {
 
     /// The pool's use in the last voxelization (sparse storage only; call after it finished).
     pub fn usage(&self) -> BrickUse {
-        self.usage_of(self.current.get())
+        self.usage_of(self.current.last())
     }
 
     /// The pool's use in the voxelization recorded before the last: with frames in flight,
     /// the one whose frame the next frame's fence has seen finish.
     pub fn settled_usage(&self) -> BrickUse {
-        self.usage_of((self.current.get() + 1) % FRAMES_IN_FLIGHT)
+        self.usage_of(self.current.settled())
     }
 
     fn usage_of(&self, i: usize) -> BrickUse {

@@ -328,11 +328,17 @@ impl Voxelizer {
     /// renderer): its parameters (the grid's place among them) and, for points refined where
     /// the camera looks, the camera. Equal keys make the same voxels.
     pub fn key(&self) -> Vec<u8> {
+        let camera = self.sees_camera();
         match self {
-            Voxelizer::Tess(t) => t.params.key(false),
-            Voxelizer::Raster(r) => r.params.key(false),
-            Voxelizer::Points(p) => p.params.key(p.refines()),
+            Voxelizer::Tess(t) => t.params.key(camera),
+            Voxelizer::Raster(r) => r.params.key(camera),
+            Voxelizer::Points(p) => p.params.key(camera),
         }
+    }
+
+    /// Whether the voxels depend on the camera (points refined where it looks).
+    pub fn sees_camera(&self) -> bool {
+        matches!(self, Voxelizer::Points(p) if p.refines())
     }
 
     /// Notes for the user (e.g. how many triangles were subdivided).
