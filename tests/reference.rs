@@ -9,7 +9,7 @@ use vct::reference::pathtrace::{PathTracer, RefOptions};
 use vct::scene::{Camera, Light, Scene};
 
 fn trace(scene: &Scene, bounces: u32, spp: u32) -> vct::reference::pathtrace::RefImage {
-    PathTracer::new(scene).render(RefOptions { bounces, spp, seed: 7 }, &|_| {})
+    PathTracer::new(scene).render(RefOptions { bounces, spp, seed: 7, ..Default::default() }, &|_| {})
 }
 
 fn camera(eye: Vec3, target: Vec3, size: u32) -> Camera {

@@ -18,6 +18,7 @@
 #define LIGHT_SPOT 0
 #define LIGHT_DIRECTIONAL 1
 #define LIGHT_POINT 2
+#define LIGHT_AREA 3
 // Lights per scene, each with its own shadow map (a point light's six cube faces, the others one
 // layer each) in one layered shadow map.
 #define MAX_LIGHTS 8

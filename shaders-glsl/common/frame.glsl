@@ -10,6 +10,8 @@ struct LightData {
     vec4 direction;  // xyz: the way light travels (unit)
     vec4 color;      // rgb: intensity (W/sr; spot, point) or irradiance (W/m^2; directional)
     vec4 cone;       // x: inner, y: outer half-angle (radians); z: shadow texel size (uv); w: first shadow layer
+    vec4 half_u;     // xyz: an area light's half edges (corners: position ± half_u ± half_v; its light
+    vec4 half_v;     // leaves on the side half_u x half_v points to, which `direction` holds)
 };
 
 layout(set = 0, binding = 0) uniform FrameUniforms {
@@ -55,10 +57,26 @@ struct Material {
     vec4 albedo;    // rgb: linear albedo; a: metallic
     vec4 emissive;  // rgb: emitted radiance; a: roughness
     vec4 specular;  // rgb: F0 of the dielectric lobe (zero: no specular lobe)
-    uvec4 tex;      // x: has albedo texture, y: has normal texture (HAS_TEXTURE / NO_TEXTURE)
+    uvec4 tex;      // x: has albedo texture, y: has normal texture (HAS_TEXTURE / NO_TEXTURE);
+                    // z: its emission reaches the scene through area lights, not its voxels
 };
 
 layout(set = 0, binding = 1, std430) readonly buffer Materials { Material materials[]; };
+
+// The reflectance a material's voxels carry (`albedo`: its texture applied): the diffuse albedo
+// plus the specular lobe's reflectance at normal incidence (F0), as direct shading reflects
+// both. A voxel spreads what it reflects over every direction: a glossy surface's light is
+// kept, in the wrong directions, instead of being lost (the classic Cornell box's boxes have
+// Kd 0 and Ks 0.725: their voxels reflected nothing; docs/benchmarks.md, "Emissive surfaces").
+vec3 voxel_albedo_of(Material m, vec3 albedo) {
+    float metallic = m.albedo.a;
+    return min(albedo * (1.0 - metallic) + mix(m.specular.rgb, albedo, metallic), vec3(1.0));
+}
+
+// The radiance a material's voxels emit: none where area lights carry it (scene::area).
+vec3 voxel_emission_of(Material m) {
+    return m.tex.z != 0u ? vec3(0.0) : m.emissive.rgb;
+}
 
 // The diffuse cone set (render::cones::ConeGpu): a cosine-weighted quadrature of the hemisphere.
 struct Cone {

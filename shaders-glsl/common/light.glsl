@@ -1,7 +1,8 @@
 // The scene's lights (frame.lights): direction to light `j` and the irradiance it delivers to a
 // point (before shadowing and n.l). Spot: intensity/d^2, falloff linear in angle from inner to
-// outer; point: intensity/d^2; directional: its irradiance. Each light's shadow map is one layer
-// of the layered shadow map, a point light's six, a cube (render::frame).
+// outer; point: intensity/d^2; directional: its irradiance; area (an emissive quad, scene::area):
+// the polygon's exact irradiance in vector form. Each light's shadow map is one layer of the
+// layered shadow map, a point or area light's six, a cube (render::frame).
 #ifndef VCT_LIGHT_GLSL
 #define VCT_LIGHT_GLSL
 #include "frame.glsl"
@@ -10,9 +11,50 @@ int light_count() {
     return int(frame.light_count.x);
 }
 
-// Returns irradiance on a plane facing light `j`; `l` gets the unit vector towards the light.
-vec3 light_incident(int j, vec3 p, out vec3 l) {
+// An area light's irradiance at `p` on a plane of normal `n` (zero: no plane) as a vector:
+// returned length times dot(n, l) is the irradiance. Lambert's formula for a polygon in Arvo's
+// (1995) vector form: with the corners q_i seen from p, F = 1/2 sum theta_i normalize(q_i x q_i+1)
+// (theta_i the angle between q_i and q_i+1), and a plane facing the polygon receives
+// L |F . n| when the whole polygon lies above it; so the polygon is first clipped to n's
+// horizon (Sutherland-Hodgman against one plane: a quad keeps at most five corners). Light
+// leaves the side `direction` points to only.
+vec3 area_incident(LightData li, vec3 p, vec3 n, out vec3 l) {
+    vec3 c = li.position.xyz - p;
+    l = c / max(length(c), 1e-8);
+    if (dot(c, li.direction.xyz) >= 0.0) return vec3(0.0);
+    vec3 u = li.half_u.xyz, v = li.half_v.xyz;
+    // Counter-clockwise about the light's normal (u x v).
+    vec3 q[4] = vec3[4](c - u - v, c + u - v, c + u + v, c - u + v);
+    bool clip = dot(n, n) > 0.0;
+    vec3 r[5];
+    int k = 0;
+    for (int i = 0; i < 4; i++) {
+        vec3 a = q[i], b = q[(i + 1) % 4];
+        float da = clip ? dot(a, n) : 1.0, db = clip ? dot(b, n) : 1.0;
+        if (da >= 0.0 && k < 5) r[k++] = a;
+        if ((da >= 0.0) != (db >= 0.0) && k < 5) r[k++] = a + (b - a) * (da / (da - db));
+    }
+    if (k < 3) return vec3(0.0);
+    vec3 f = vec3(0.0);
+    for (int i = 0; i < k; i++) {
+        vec3 a = normalize(r[i]), b = normalize(r[(i + 1) % k]);
+        vec3 x = cross(a, b);
+        float s = length(x);
+        if (s > 1e-7) f += x / s * atan(s, dot(a, b));
+    }
+    // Corners counter-clockwise about a normal facing p sum to a vector pointing away from them.
+    f *= -0.5;
+    float len = length(f);
+    if (len <= 0.0) return vec3(0.0);
+    l = f / len;
+    return li.color.rgb * len;
+}
+
+// Returns irradiance on a plane facing light `j` (an area light's: on the plane of normal `n`,
+// zero for none, see area_incident); `l` gets the unit vector towards the light.
+vec3 light_incident(int j, vec3 p, vec3 n, out vec3 l) {
     LightData li = frame.lights[j];
+    if (uint(li.position.w) == LIGHT_AREA) return area_incident(li, p, n, l);
     if (uint(li.position.w) == LIGHT_DIRECTIONAL) {
         l = -li.direction.xyz;
         return li.color.rgb;
@@ -27,13 +69,13 @@ vec3 light_incident(int j, vec3 p, out vec3 l) {
     return li.color.rgb * falloff / d2;
 }
 
-// The world-to-clip matrix of light `j`'s shadow map for a point `p`, and its layer: a point
-// light's cube face along the major axis of the direction from the light (+x, -x, +y, -y, +z,
+// The world-to-clip matrix of light `j`'s shadow map for a point `p`, and its layer: a point or
+// area light's cube face along the major axis of the direction from the light (+x, -x, +y, -y, +z,
 // -z), else the light's one layer.
 mat4 shadow_view_proj(int j, vec3 p, out int layer) {
     LightData li = frame.lights[j];
     layer = int(li.cone.w);
-    if (uint(li.position.w) == LIGHT_POINT) {
+    if (uint(li.position.w) == LIGHT_POINT || uint(li.position.w) == LIGHT_AREA) {
         vec3 d = p - li.position.xyz, a = abs(d);
         int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
         layer += 2 * axis + (d[axis] < 0.0 ? 1 : 0);

@@ -76,7 +76,7 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
     vec3 direct = vec3(0.0);
     for (int j = 0; j < light_count(); j++) {
         vec3 l;
-        vec3 irradiance = light_incident(j, world, l);
+        vec3 irradiance = light_incident(j, world, n, l);
         if (dot(n, l) > 0.0 && max(irradiance.r, max(irradiance.g, irradiance.b)) > 0.0) {
             direct += irradiance * cook_torrance(n, v, l, albedo, m.specular.rgb, roughness, metallic) * shadow_factor(j, world, n);
         }

@@ -59,6 +59,9 @@ void main() {
     // walking the ray back towards the light (INJECT_SEARCH_VOXELS at most), else the one just
     // behind the point: a wall thinner than a voxel must not light its far side.
     LightData li = frame.lights[j];
+    // An area light lights only the side its face looks to: the texels behind it (its cube's
+    // back face and half of four others) find nothing to light.
+    if (uint(li.position.w) == LIGHT_AREA && dot(p - li.position.xyz, li.direction.xyz) <= 0.0) return;
     vec3 l_dir = uint(li.position.w) == LIGHT_DIRECTIONAL ? li.direction.xyz : normalize(p - li.position.xyz);
     float step = 0.25 * frame.voxel_origin.w;
     ivec3 v = ivec3(-1), t = ivec3(0);  // the voxel, and where it is stored
@@ -101,8 +104,12 @@ void main() {
     for (int k = 0; k < light_count(); k++) {
         if ((lights & (1u << k)) == 0u) continue;
         vec3 l;
-        vec3 irradiance = light_incident(k, centre, l);
-        float cos_theta = oriented ? abs(dot(normalize(normal), l)) : 1.0;
+        // The voxel's normal has no sign: the side facing the light's position (an area light
+        // clips its polygon to that side's horizon).
+        vec3 n = oriented ? normalize(normal) : vec3(0.0);
+        if (dot(n, frame.lights[k].position.xyz - centre) < 0.0) n = -n;
+        vec3 irradiance = light_incident(k, centre, n, l);
+        float cos_theta = oriented ? abs(dot(n, l)) : 1.0;
         vec3 r = albedo / PI * irradiance * cos_theta;
         reflected += r;
         float lum = dot(r, vec3(1.0));

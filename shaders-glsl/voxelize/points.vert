@@ -18,7 +18,7 @@ void main() {
     if (m.tex.x == HAS_TEXTURE) albedo *= textureLod(albedo_texture, in_uv, 0.0).rgb;
     vec3 normal = dot(in_normal, in_normal) < 1e-12 ? vec3(0.0, 1.0, 0.0) : in_normal;
     ivec3 v = ivec3(floor(to_voxel_space(in_pos)));
-    write_voxel(v, albedo, normal, m.emissive.rgb);
+    write_voxel(v, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
     gl_Position = vec4(in_pos, 1.0);
     gl_PointSize = 1.0;
 }

@@ -51,5 +51,5 @@ void main() {
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= textureLod(albedo_texture, tex, 0.0).rgb;
     if (dot(normal, normal) < 1e-12) normal = vec3(0.0, 1.0, 0.0);
-    write_voxel(ivec3(floor(to_voxel_space(world))), albedo, normal, m.emissive.rgb);
+    write_voxel(ivec3(floor(to_voxel_space(world))), voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
 }

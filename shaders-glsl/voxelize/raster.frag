@@ -39,7 +39,7 @@ void main() {
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
     if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) == 0u) {
         float z = plane_depth(gl_FragCoord.xy / scale);
-        write_voxel(ivec3(unswizzle(vec3(xy, floor(z)), in_axis)), albedo, in_normal, m.emissive.rgb);
+        write_voxel(ivec3(unswizzle(vec3(xy, floor(z)), in_axis)), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
         return;
     }
     // The plane's depth over the whole voxel column cell (dominant axis: slopes are <= 1).
@@ -62,7 +62,7 @@ void main() {
     for (int layer = first; layer <= last; layer++) {
         vec3 c = vec3(xy, float(layer)) + 0.5;
         if (triangle_box_overlap(in_tri[0] - c, in_tri[1] - c, in_tri[2] - c, vec3(0.5))) {
-            write_voxel(ivec3(unswizzle(vec3(xy, float(layer)), in_axis)), albedo, in_normal, m.emissive.rgb);
+            write_voxel(ivec3(unswizzle(vec3(xy, float(layer)), in_axis)), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
         }
     }
 }

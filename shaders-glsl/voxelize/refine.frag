@@ -20,5 +20,5 @@ void main() {
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
     vec3 normal = dot(in_normal, in_normal) < 1e-12 ? vec3(0.0, 1.0, 0.0) : in_normal;
-    write_voxel(v, albedo, normal, m.emissive.rgb);
+    write_voxel(v, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
 }

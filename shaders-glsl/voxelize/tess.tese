@@ -27,7 +27,7 @@ void main() {
     if (m.tex.x == HAS_TEXTURE) albedo *= textureLod(albedo_texture, uv, 0.0).rgb;
     if (dot(normal, normal) < 1e-12) normal = vec3(0.0, 1.0, 0.0);
     ivec3 own = ivec3(floor(to_voxel_space(world)));
-    write_voxel(own, albedo, normal, m.emissive.rgb);
+    write_voxel(own, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
     if ((voxel.grid.y & VOXEL_FLAG_NEIGHBOURS) != 0u) {
         vec3 p0 = to_voxel_space(in_world[0]), p1 = to_voxel_space(in_world[1]), p2 = to_voxel_space(in_world[2]);
         for (int i = 0; i < 27; i++) {
@@ -36,7 +36,7 @@ void main() {
             vec3 centre = vec3(c) + 0.5;
             if (imageLoad(voxel_albedo, stored_at(c)).r == 0u &&
                 triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, vec3(0.5))) {
-                write_voxel(c, albedo, normal, m.emissive.rgb);
+                write_voxel(c, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
             }
         }
     }

@@ -115,7 +115,8 @@ pub struct Judged {
     /// Path-traced with the renderer's bounces.
     pub full: Vec<Vec3>,
     pub full_rgb: Vec<u8>,
-    /// Path-traced direct light only (plus what emitters show the camera directly).
+    /// Path-traced direct light only (plus what emitters show the camera directly, and the
+    /// reflected light of area-light emitters).
     pub direct: Vec<Vec3>,
     pub regions: RegionMap,
     pub noise: f32,
@@ -131,8 +132,10 @@ impl Judged {
         cache: &Path,
         progress: &dyn Fn(&str),
     ) -> Result<Self> {
-        let (full, info) = reference_cached(&scene, name, bounces, spp, cache, progress)?;
-        let (direct, _) = reference_cached(&scene, name, 0, spp.min(64), cache, progress)?;
+        let (full, info) = reference_cached(&scene, name, bounces, false, spp, cache, progress)?;
+        // Direct light as the renderer counts it: an area light's reflection is direct.
+        let area = scene.lights.iter().any(|l| l.is_mesh_emitter());
+        let (direct, _) = reference_cached(&scene, name, 0, area, spp.min(64), cache, progress)?;
         let regions = regions(&scene, &PathTracer::new(&scene).primary_hits(), 0.004);
         Ok(Judged {
             name: name.into(),
@@ -306,8 +309,10 @@ pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(
 /// the default, and the default with each of its choices undone or changed.
 pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi };
-    // The step cap is no model choice: every variant gets the default's.
-    let t = GiFile { bounces: default.bounces, steps: default.steps, ..GiFile::thesis() };
+    // The step cap is no model choice: every variant gets the default's; nor are the lights
+    // (area lights are chosen when the scene loads, and one direct frame serves all variants).
+    let t =
+        GiFile { bounces: default.bounces, steps: default.steps, area_lights: default.area_lights, ..GiFile::thesis() };
     let aniso = GiFile { filter: Filter::Aniso, ..t.clone() };
     let footprint = GiFile { level: LevelRule::Footprint, ..aniso.clone() };
     let clamp = GiFile { self_clamp: true, ..footprint.clone() };

@@ -90,7 +90,7 @@ pub fn choose(
         });
     };
     let bounces = scene.settings.gi.bounces;
-    let (reference, _) = super::reference_cached(scene, name, bounces, spp, cache, progress)?;
+    let (reference, _) = super::reference_cached(scene, name, bounces, false, spp, cache, progress)?;
     let reference = metrics::tonemap(&reference);
     let mut tried = Vec::new();
     for &n in candidates {

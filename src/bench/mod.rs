@@ -194,6 +194,7 @@ pub fn reference_cached(
     scene: &Scene,
     name: &str,
     bounces: u32,
+    area_lights_direct: bool,
     spp: u32,
     cache: &Path,
     progress: &dyn Fn(&str),
@@ -202,7 +203,7 @@ pub fn reference_cached(
     let emits = scene.materials.iter().any(|m| m.emissive.max_element() > 0.0);
     let version = if emits { EMITTER_SAMPLING_VERSION } else { REFERENCE_VERSION };
     format!(
-        "{version}|{:?}|{}|{}|{:?}|{:?}|{:?}|{spp}|{bounces}",
+        "{version}|{:?}|{}|{}|{:?}|{:?}|{:?}|{spp}|{bounces}|{area_lights_direct}",
         scene.source,
         scene.mesh.triangle_count(),
         scene.mesh.vertices.len(),
@@ -211,7 +212,8 @@ pub fn reference_cached(
         scene.materials.iter().map(|m| (m.albedo, m.emissive, m.specular, m.roughness)).collect::<Vec<_>>(),
     )
     .hash(&mut h);
-    let path = cache.join(format!("reference-{name}-b{bounces}-{:016x}.exr", h.finish()));
+    let kind = if area_lights_direct { "d" } else { "b" };
+    let path = cache.join(format!("reference-{name}-{kind}{bounces}-{:016x}.exr", h.finish()));
     let noise_path = path.with_extension("noise");
     if let (Ok(frame), Ok(noise)) = (output::read_frame(&path), std::fs::read_to_string(&noise_path)) {
         if (frame.width, frame.height) == (scene.camera.width, scene.camera.height) {
@@ -220,7 +222,7 @@ pub fn reference_cached(
         }
     }
     progress(&format!("path tracing the {name} reference ({bounces} bounce(s), {spp} spp)"));
-    let img = PathTracer::new(scene).render(RefOptions { bounces, spp, seed: 1 }, &|_| {});
+    let img = PathTracer::new(scene).render(RefOptions { bounces, spp, seed: 1, area_lights_direct }, &|_| {});
     std::fs::create_dir_all(cache).map_err(|source| Error::Io { path: cache.to_path_buf(), source })?;
     output::write_exr(&path, &crate::render::FrameImages::from_linear(img.width, img.height, &img.radiance))?;
     std::fs::write(&noise_path, img.relative_noise.to_string())
@@ -243,7 +245,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     let mut density_sweep = Vec::new();
     let mut gi_scale_sweep = Vec::new();
     for (name, scene) in &opts.scenes {
-        let (reference, info) = reference_cached(scene, name, 1, opts.reference_spp, &opts.cache_dir, progress)?;
+        let (reference, info) = reference_cached(scene, name, 1, false, opts.reference_spp, &opts.cache_dir, progress)?;
         references.push(info);
         let default_method = RenderOptions::default().method;
         // The default storage for every voxelizer; the others (those the device offers) with the

@@ -25,11 +25,15 @@ use rayon::prelude::*;
 use super::bvh::Bvh;
 use crate::scene::{Light, Material, Scene, Texture};
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct RefOptions {
     pub bounces: u32,
     pub spp: u32,
     pub seed: u64,
+    /// At the path's last vertex, also the light of emitters that the renderer lights the
+    /// scene with as area lights (`Material::area_light`), reflected there: with `bounces` 0,
+    /// direct light as the renderer counts it (an area light's reflection is direct light).
+    pub area_lights_direct: bool,
 }
 
 /// A rendered reference: linear radiance per pixel plus its noise.
@@ -131,6 +135,8 @@ fn light_at(light: &Light, p: Vec3) -> (Vec3, Vec3, f32) {
             let d2 = to.length_squared().max(1e-12);
             (intensity / d2, to / d2.sqrt(), d2.sqrt())
         }
+        // Its emitter's triangles are sampled instead (`emitter_sample`).
+        Light::Area { center, .. } => (Vec3::ZERO, (center - p).normalize_or_zero(), 0.0),
     }
 }
 
@@ -305,8 +311,17 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Light from a point on an emitter, drawn by power, reaching vertex `x` and reflected
-    /// towards `v`, weighted against the BSDF sampling the same direction.
-    fn emitter_sample(&self, x: &Vertex, lobes: &Lobes, v: Vec3, eps: f32, rng: &mut SmallRng) -> Vec3 {
+    /// towards `v`, weighted against the BSDF sampling the same direction; `only_area`: the
+    /// path ends here (no BSDF sample to weigh against), and only area-light emitters count.
+    fn emitter_sample(
+        &self,
+        x: &Vertex,
+        lobes: &Lobes,
+        v: Vec3,
+        eps: f32,
+        only_area: bool,
+        rng: &mut SmallRng,
+    ) -> Vec3 {
         let e = &self.emitters;
         if e.tris.is_empty() {
             return Vec3::ZERO;
@@ -337,14 +352,18 @@ impl<'a> PathTracer<'a> {
         if self.bvh.intersect(origin, l, 0.0, dist * (1.0 - 1e-4) - eps, true).is_some() {
             return Vec3::ZERO;
         }
-        let le = self.scene.materials[self.tri_material[t] as usize].emissive;
+        let m = &self.scene.materials[self.tri_material[t] as usize];
+        if only_area && !m.area_light {
+            return Vec3::ZERO;
+        }
+        let le = m.emissive;
         let pdf_light = e.pdf_area(le.dot(LUMA)) * d2 / cos_y;
-        let weight = power_heuristic(pdf_light, lobes.pdf(x.n, v, l));
+        let weight = if only_area { 1.0 } else { power_heuristic(pdf_light, lobes.pdf(x.n, v, l)) };
         lobes.brdf(x.n, v, l) * x.n.dot(l) * le * weight / pdf_light
     }
 
     /// One path's radiance along the camera ray (o, d).
-    fn radiance(&self, mut o: Vec3, mut d: Vec3, bounces: u32, rng: &mut SmallRng) -> Vec3 {
+    fn radiance(&self, mut o: Vec3, mut d: Vec3, bounces: u32, area_direct: bool, rng: &mut SmallRng) -> Vec3 {
         let mesh = &self.scene.mesh;
         let scale = mesh.bounds.size().length().max(1e-3);
         let eps = 1e-4 * scale;
@@ -381,10 +400,13 @@ impl<'a> PathTracer<'a> {
                 }
             }
             if bounce == bounces {
+                if area_direct {
+                    l_sum += throughput * self.emitter_sample(&x, &lobes, v, eps, true, rng);
+                }
                 break;
             }
             // An emitter seen from here is one bounce further along the path.
-            l_sum += throughput * self.emitter_sample(&x, &lobes, v, eps, rng);
+            l_sum += throughput * self.emitter_sample(&x, &lobes, v, eps, false, rng);
             let Some(next) = lobes.sample(x.n, v, rng) else { break };
             if next.dot(x.ng) <= 0.0 {
                 break;
@@ -421,7 +443,7 @@ impl<'a> PathTracer<'a> {
                             let (jx, jy): (f32, f32) =
                                 if spp == 1 { (0.0, 0.0) } else { (rng.gen::<f32>() - 0.5, rng.gen::<f32>() - 0.5) };
                             let (o, d) = cam.ray(x as f32 + jx, y as f32 + jy);
-                            let l = self.radiance(o, d, opts.bounces, &mut rng);
+                            let l = self.radiance(o, d, opts.bounces, opts.area_lights_direct, &mut rng);
                             sum += l;
                             let lum = l.dot(LUMA);
                             sum2 += lum * lum;

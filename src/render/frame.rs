@@ -107,7 +107,7 @@ pub fn point_faces(position: Vec3, bounds: &Aabb) -> [Mat4; 6] {
 pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
     let up_for = |d: Vec3| if d.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
     match *light {
-        Light::Point { position, .. } => point_faces(position, bounds)[0],
+        Light::Point { position: at, .. } | Light::Area { center: at, .. } => point_faces(at, bounds)[0],
         Light::Spot { position, direction, outer_deg, .. } => {
             let view = Mat4::look_at_rh(position, position + direction, up_for(direction));
             let (near, far) = depth_range(position, bounds);
@@ -127,9 +127,9 @@ pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
     }
 }
 
-/// Shadow-map layers of a light: a point light's six cube faces, else one.
+/// Shadow-map layers of a light: six cube faces for a point or area light, else one.
 pub fn shadow_layers(light: &Light) -> u32 {
-    if matches!(light, Light::Point { .. }) {
+    if light.cube_origin().is_some() {
         6
     } else {
         1
@@ -138,9 +138,9 @@ pub fn shadow_layers(light: &Light) -> u32 {
 
 /// Each light's world-to-clip matrices, one per shadow-map layer, in light order.
 fn layer_matrices(light: &Light, bounds: &Aabb) -> Vec<Mat4> {
-    match *light {
-        Light::Point { position, .. } => point_faces(position, bounds).to_vec(),
-        _ => vec![light_view_proj(light, bounds)],
+    match light.cube_origin() {
+        Some(at) => point_faces(at, bounds).to_vec(),
+        None => vec![light_view_proj(light, bounds)],
     }
 }
 
@@ -161,18 +161,29 @@ impl FrameUniforms {
                     direction: direction.normalize().extend(0.0),
                     color: intensity.extend(0.0),
                     cone: Vec4::new(inner_deg.to_radians(), outer_deg.to_radians(), texel, first),
+                    ..Default::default()
                 },
                 Light::Directional { direction, irradiance } => LightGpu {
                     position: Vec4::new(0.0, 0.0, 0.0, config::LIGHT_DIRECTIONAL as f32),
                     direction: direction.normalize().extend(0.0),
                     color: irradiance.extend(0.0),
                     cone: Vec4::new(0.0, 0.0, texel, first),
+                    ..Default::default()
                 },
                 Light::Point { position, intensity } => LightGpu {
                     position: position.extend(config::LIGHT_POINT as f32),
                     direction: Vec4::new(0.0, -1.0, 0.0, 0.0),
                     color: intensity.extend(0.0),
                     cone: Vec4::new(0.0, 0.0, texel, first),
+                    ..Default::default()
+                },
+                Light::Area { center, half_u, half_v, radiance } => LightGpu {
+                    position: center.extend(config::LIGHT_AREA as f32),
+                    direction: half_u.cross(half_v).normalize_or_zero().extend(0.0),
+                    color: radiance.extend(0.0),
+                    cone: Vec4::new(0.0, 0.0, texel, first),
+                    half_u: half_u.extend(0.0),
+                    half_v: half_v.extend(0.0),
                 },
             };
             for m in layer_matrices(light, bounds) {

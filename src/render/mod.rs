@@ -289,7 +289,7 @@ fn shadow_texel_size(light: &Light, bounds: &crate::scene::Aabb, resolution: u32
     let radius = bounds.size().length() * 0.5;
     match *light {
         Light::Directional { .. } => 2.0 * radius * 1.01 / resolution as f32,
-        Light::Point { position, .. } => {
+        Light::Point { position, .. } | Light::Area { center: position, .. } => {
             // A cube face spans 90°: 2 tan 45° = 2 world units per unit of distance.
             let far = (bounds.center() - position).length() + radius;
             2.0 * far / resolution as f32

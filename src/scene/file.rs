@@ -58,6 +58,9 @@ pub struct GiFile {
     /// The cone set of the voxel-space bounces (their light is gathered again by the surfaces,
     /// so a wider, cheaper set serves).
     pub bounce_cones: ConeSet,
+    /// Emissive quads light the scene as area lights (`scene::area`: exact irradiance, shadow
+    /// mapped) rather than through their voxels. Read when the scene loads.
+    pub area_lights: bool,
 }
 
 /// Radiance mip filtering.
@@ -168,6 +171,7 @@ impl GiFile {
             facing: false,
             bounces: 1,
             bounce_cones: ConeSet::Thesis5Cells,
+            area_lights: false,
         }
     }
 }
@@ -185,6 +189,7 @@ impl Default for GiFile {
             level: LevelRule::Footprint,
             self_clamp: true,
             facing: true,
+            area_lights: true,
             ..GiFile::thesis()
         }
     }

@@ -254,6 +254,7 @@ fn convert_material(m: &gltf::Material, images: &mut Images, warnings: &mut Vec<
         metallic: metallic.clamp(0.0, 1.0),
         albedo_texture,
         normal_texture,
+        area_light: false,
     })
 }
 
@@ -268,6 +269,7 @@ fn default_material() -> Material {
         metallic: 1.0,
         albedo_texture: None,
         normal_texture: None,
+        area_light: false,
     }
 }
 

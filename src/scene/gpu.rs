@@ -69,6 +69,9 @@ pub struct LightGpu {
     pub color: Vec4,
     /// x, y: inner and outer half-angle (radians); z: shadow texel size (uv); w: first layer.
     pub cone: Vec4,
+    /// xyz: an area light's half edges (its corners: position ± half_u ± half_v).
+    pub half_u: Vec4,
+    pub half_v: Vec4,
 }
 
 pub const VERTEX_ATTRIBUTES: [vk::VertexInputAttributeDescription; 4] = [
@@ -223,7 +226,7 @@ impl SceneGpu {
                 albedo: m.albedo.extend(m.metallic).into(),
                 emissive: m.emissive.extend(m.roughness).into(),
                 specular: m.specular.extend(0.0).into(),
-                tex: [flag(m.albedo_texture), flag(m.normal_texture), 0, 0],
+                tex: [flag(m.albedo_texture), flag(m.normal_texture), m.area_light as u32, 0],
             })
             .collect();
         let materials =

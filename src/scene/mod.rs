@@ -4,6 +4,7 @@
 //! physical: metres, W/sr for spot intensity, W/m² for directional irradiance; MTL `Kd` is
 //! linear albedo. The Cornell box of `assets/cornell-spot/` is embedded as the default.
 
+pub mod area;
 pub mod cones;
 pub mod file;
 pub mod gltf;
@@ -96,6 +97,9 @@ pub struct Material {
     pub metallic: f32,
     pub albedo_texture: Option<usize>,
     pub normal_texture: Option<usize>,
+    /// Its emission reaches the scene through `Light::Area`s (every triangle of it lies in one:
+    /// `area::add_area_lights`), not through the voxels; the eye and the path tracer still see it.
+    pub area_light: bool,
 }
 
 impl Material {
@@ -109,6 +113,7 @@ impl Material {
             metallic: 0.0,
             albedo_texture: None,
             normal_texture: None,
+            area_light: false,
         }
     }
 }
@@ -193,6 +198,16 @@ pub enum Light {
         position: Vec3,
         intensity: Vec3,
     },
+    /// An emissive quad of the mesh (`area`): a parallelogram with corners `center ± half_u ±
+    /// half_v`, emitting `radiance` W/(m²·sr) from the side `half_u × half_v` points to (a cube
+    /// shadow map from its centre). The mesh keeps the quad's emission: the path tracer samples
+    /// those triangles, not this light.
+    Area {
+        center: Vec3,
+        half_u: Vec3,
+        half_v: Vec3,
+        radiance: Vec3,
+    },
 }
 
 impl Light {
@@ -214,6 +229,23 @@ impl Light {
                 Light::Directional { direction, irradiance: irradiance * s }
             }
             Light::Point { position, intensity } => Light::Point { position, intensity: intensity * s },
+            Light::Area { center, half_u, half_v, radiance } => {
+                Light::Area { center, half_u, half_v, radiance: radiance * s }
+            }
+        }
+    }
+
+    /// Whether the light stands for emissive triangles of the mesh ([`Light::Area`]).
+    pub fn is_mesh_emitter(&self) -> bool {
+        matches!(self, Light::Area { .. })
+    }
+
+    /// Where a point-like shadow map sits (a point light's position, an area light's centre).
+    pub fn cube_origin(&self) -> Option<Vec3> {
+        match *self {
+            Light::Point { position, .. } => Some(position),
+            Light::Area { center, .. } => Some(center),
+            _ => None,
         }
     }
 }
@@ -369,6 +401,10 @@ impl Scene {
             _ => Err(Error::input(path, "expected a scene file (.toml), a mesh (.obj) or a glTF file (.gltf, .glb)")),
         }?;
         check_values(&scene)?;
+        let mut scene = scene;
+        if scene.settings.gi.area_lights {
+            area::add_area_lights(&mut scene);
+        }
         Ok(scene)
     }
 

@@ -104,7 +104,17 @@ fn convert_material(
     };
     let (albedo, emissive, specular) =
         (sanitize("Kd", albedo, 1.0), sanitize("Ke", emissive, f32::INFINITY), sanitize("Ks", specular, 1.0));
-    Material { name: m.name.clone(), albedo, emissive, specular, roughness, metallic, albedo_texture, normal_texture }
+    Material {
+        name: m.name.clone(),
+        albedo,
+        emissive,
+        specular,
+        roughness,
+        metallic,
+        albedo_texture,
+        normal_texture,
+        area_light: false,
+    }
 }
 
 /// Rewrites colour lines tobj cannot take: `Kd r` means `Kd r r r` (the MTL format), and a line

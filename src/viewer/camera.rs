@@ -110,8 +110,8 @@ pub fn swing_light(light: &mut Light, yaw: f32, pitch: f32) {
     };
     match light {
         Light::Spot { direction, .. } | Light::Directional { direction, .. } => *direction = turn(*direction),
-        // A point light shines every way: nothing to swing.
-        Light::Point { .. } => {}
+        // A point light shines every way, an area light is a quad of the mesh: nothing to swing.
+        Light::Point { .. } | Light::Area { .. } => {}
     }
 }
 

@@ -311,7 +311,7 @@ fn render_reference(scene: &Scene, bounces: u32, spp: u32) -> (vct::reference::p
     );
     let start = std::time::Instant::now();
     let tracer = vct::reference::pathtrace::PathTracer::new(scene);
-    let opts = vct::reference::pathtrace::RefOptions { bounces, spp, seed: 1 };
+    let opts = vct::reference::pathtrace::RefOptions { bounces, spp, seed: 1, ..Default::default() };
     let image = tracer.render(opts, &|n| bar.inc(n));
     bar.finish_and_clear();
     (image, start.elapsed().as_secs_f64())
