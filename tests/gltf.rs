@@ -316,10 +316,12 @@ fn a_textured_gltf_with_an_emitter_and_a_sun_renders_the_expected_colours() {
     let mut scene = Scene::load(&textured_gltf(&d)).unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     assert_eq!(scene.textures.len(), 1);
-    // 1366 lux at 683 lm/W: 2 W/m² straight down.
+    // 1366 lux at 683 lm/W: 2 W/m² straight down; the emissive rectangle is an area light
+    // (scene::area) of its radiance, centred on it.
     match scene.lights.as_slice() {
-        [Light::Directional { direction, irradiance }] => {
-            assert!(direction.distance(-Vec3::Y) < 1e-5 && (*irradiance - Vec3::splat(2.0)).abs().max_element() < 1e-5)
+        [Light::Directional { direction, irradiance }, Light::Area { center, radiance, .. }] => {
+            assert!(direction.distance(-Vec3::Y) < 1e-5 && (*irradiance - Vec3::splat(2.0)).abs().max_element() < 1e-5);
+            assert!(center.distance(Vec3::new(1.4, 0.0, 0.0)) < 1e-5 && radiance.distance(Vec3::Y) < 1e-5);
         }
         other => panic!("lights {other:?}"),
     }

@@ -21,7 +21,7 @@
 #include "lit_side.glsl"
 
 layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
-// One layer, or a point light's six cube faces (the dispatch's z).
+// One layer, or a point or area light's six cube faces (one dispatch a layer: push.layer).
 layout(set = 1, binding = 0) uniform sampler2DArray shadow_depth;
 layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_albedo;
 layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
@@ -33,7 +33,7 @@ layout(set = 1, binding = 5, r32ui) uniform uimage3D lit_side;
 #include "bricks.glsl"
 // One thread per `stride` x `stride` block of texels, reading its centre texel (render::inject:
 // the stride keeps INJECT_TEXELS_PER_VOXEL texels per voxel where the map has more).
-layout(push_constant) uniform Push { uint stride; uint light; uint phase; } push;
+layout(push_constant) uniform Push { uint stride; uint light; uint phase; uint layer; } push;
 
 const float PI = 3.14159265358979;
 
@@ -46,7 +46,7 @@ void main() {
     int j = int(push.light);
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy) * stride + stride / 2;
     ivec2 size = textureSize(shadow_depth, 0).xy;
-    int layer = int(frame.lights[j].cone.w) + int(gl_GlobalInvocationID.z);
+    int layer = int(frame.lights[j].cone.w) + int(push.layer);
     if (any(greaterThanEqual(texel, size))) return;
     float depth = texelFetch(shadow_depth, ivec3(texel, layer), 0).r;
     if (depth >= 1.0) return;
@@ -59,8 +59,8 @@ void main() {
     // walking the ray back towards the light (INJECT_SEARCH_VOXELS at most), else the one just
     // behind the point: a wall thinner than a voxel must not light its far side.
     LightData li = frame.lights[j];
-    // An area light lights only the side its face looks to: the texels behind it (its cube's
-    // back face and half of four others) find nothing to light.
+    // An area light lights only the side its face looks to: texels behind it (about half of
+    // four cube faces; a face wholly behind is not dispatched) find nothing to light.
     if (uint(li.position.w) == LIGHT_AREA && dot(p - li.position.xyz, li.direction.xyz) <= 0.0) return;
     vec3 l_dir = uint(li.position.w) == LIGHT_DIRECTIONAL ? li.direction.xyz : normalize(p - li.position.xyz);
     float step = 0.25 * frame.voxel_origin.w;

@@ -96,12 +96,59 @@ pub use crate::scene::depth_range;
 pub fn point_faces(position: Vec3, bounds: &Aabb) -> [Mat4; 6] {
     let (near, far) = depth_range(position, bounds);
     let proj = flip_y(Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, near.max(far * 2e-3), far));
-    let dirs = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
-    dirs.map(|d| {
+    CUBE_AXES.map(|d| {
         let up = if d.y != 0.0 { Vec3::Z } else { Vec3::Y };
         proj * Mat4::look_at_rh(position, position + d, up)
     })
 }
+
+/// World size of one shadow-map texel at the farthest scene point each of the light's layers
+/// sees (injection's stride follows it), or None for a layer that sees nothing the light
+/// lights. A point or area light's cube faces each have their own: a face's texel at depth d is
+/// 2 d / resolution wide (90°), and the faces that look at near walls need fewer texels than
+/// the one that looks down the room; an area light's faces wholly behind its quad see nothing
+/// it lights (the classic Cornell box's quad: its upward face).
+pub fn layer_texel_sizes(light: &Light, bounds: &Aabb, resolution: u32) -> Vec<Option<f32>> {
+    let radius = bounds.size().length() * 0.5;
+    let res = resolution as f32;
+    match *light {
+        Light::Directional { .. } => vec![Some(2.0 * radius * 1.01 / res)],
+        Light::Spot { position, outer_deg, .. } => {
+            let far = (bounds.center() - position).length() + radius;
+            vec![Some(2.0 * far * ((outer_deg + 1.0).to_radians()).tan() / res)]
+        }
+        Light::Point { position: at, .. } | Light::Area { center: at, .. } => {
+            let lit_side = match *light {
+                Light::Area { half_u, half_v, .. } => Some(half_u.cross(half_v).normalize_or_zero()),
+                _ => None,
+            };
+            let corners: Vec<Vec3> = (0..8)
+                .map(|i| {
+                    let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
+                    let (lo, hi) = (bounds.min, bounds.max);
+                    Vec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z))
+                })
+                .collect();
+            CUBE_AXES
+                .iter()
+                .map(|&a| {
+                    // The face's directions are a + s u + t v, |s|, |t| <= 1 (u, v the other
+                    // axes): the largest cosine with the lit side is a.n + |u.n| + |v.n|.
+                    if let Some(n) = lit_side {
+                        if a.dot(n) + (n.abs().dot(Vec3::ONE) - a.dot(n).abs()) <= 0.0 {
+                            return None;
+                        }
+                    }
+                    let depth = corners.iter().map(|c| (*c - at).dot(a)).fold(f32::MIN, f32::max);
+                    (depth > 0.0).then(|| 2.0 * depth / res)
+                })
+                .collect()
+        }
+    }
+}
+
+/// The axes of a cube shadow map's faces, in layer order (`point_faces`).
+const CUBE_AXES: [Vec3; 6] = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
 
 /// World-to-clip matrix of the light's shadow map (a point light's: its first cube face).
 pub fn light_view_proj(light: &Light, bounds: &Aabb) -> Mat4 {
@@ -222,5 +269,28 @@ impl FrameUniforms {
             previous_view_proj: f.previous_view_proj.unwrap_or(view_proj),
             gi_jitter: f.gi_jitter,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ceiling quad's cube: its upward face is not read, and each other face's texel follows
+    /// the depth it sees (the walls a metre away, the floor two).
+    #[test]
+    fn a_cube_faces_texels_follow_their_own_depth_and_the_area_lights_back_is_skipped() {
+        let bounds = Aabb { min: Vec3::new(-1.0, 0.0, -1.0), max: Vec3::new(1.0, 2.0, 1.0) };
+        let center = Vec3::new(0.0, 1.98, 0.0);
+        // Wound to face down: half_u x half_v = -y.
+        let area = Light::Area { center, half_u: Vec3::X * 0.2, half_v: Vec3::Z * 0.2, radiance: Vec3::ONE };
+        let t = layer_texel_sizes(&area, &bounds, 1000);
+        assert_eq!(t[2], None, "the face looking up sees only what lies behind the quad: {t:?}");
+        assert!((t[3].unwrap() - 2.0 * 1.98 / 1000.0).abs() < 1e-6, "{t:?}");
+        for face in [0, 1, 4, 5] {
+            assert!((t[face].unwrap() - 2.0 / 1000.0).abs() < 1e-6, "{t:?}");
+        }
+        let point = Light::Point { position: center, intensity: Vec3::ONE };
+        assert!(layer_texel_sizes(&point, &bounds, 1000).iter().all(|t| t.is_some()), "a point light lights every way");
     }
 }

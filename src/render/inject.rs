@@ -8,7 +8,9 @@
 //! computed at the voxel centre). So injection reads every `stride`-th texel, the stride chosen
 //! to keep `texels_per_voxel` texels across a voxel at the farthest lit point: its cost then
 //! follows the grid's voxel size over the lit extent. How many it needs is set by the surfaces
-//! the light grazes, whose voxels few texels hit (config.h, INJECT_TEXELS_PER_VOXEL).
+//! the light grazes, whose voxels few texels hit (config.h, INJECT_TEXELS_PER_VOXEL). Each layer
+//! of a map has its own stride (a cube's faces see the scene at their own depths), and a layer
+//! that sees nothing its light lights is not read (`frame::layer_texel_sizes`).
 
 use std::sync::Arc;
 
@@ -32,11 +34,10 @@ pub struct InjectPass {
     _depth_sampler: Sampler,
     /// The grid's voxels along each axis.
     dims: [u32; 3],
-    /// Each light's shadow-map layers (the dispatch's z, one dispatch per light).
-    light_layers: Vec<u32>,
     shadow_resolution: u32,
-    /// Injection reads every `stride`-th texel of a light's map along each axis (one a light).
-    strides: Vec<u32>,
+    /// Injection reads every `stride`-th texel of a layer along each axis: one a layer of each
+    /// light's (None: the layer is not read).
+    strides: Vec<Vec<Option<u32>>>,
     /// The resolve runs over the occupied voxels (the target cleared first).
     listed: bool,
 }
@@ -57,7 +58,7 @@ impl InjectPass {
         shadow: &ShadowPass,
         voxels: &VoxelVolume,
         radiance: &RadianceVolume,
-        strides: Vec<u32>,
+        strides: Vec<Vec<Option<u32>>>,
         listed: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
@@ -113,7 +114,7 @@ impl InjectPass {
             "inject",
             Stage::new(c, shaders::GI_INJECT_COMP).spec(&bricks.spec(0)),
             &[scene.set.layout, inject_set.layout],
-            12,
+            16,
         )?;
         Ok(InjectPass {
             ctx: ctx.clone(),
@@ -124,7 +125,6 @@ impl InjectPass {
             _depth_sampler: depth_sampler,
             dims: voxels.grid.dims.into(),
             shadow_resolution: shadow.map.desc.extent.width,
-            light_layers: shadow.light_layers.clone(),
             strides,
             listed,
         })
@@ -153,19 +153,22 @@ impl InjectPass {
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         if light {
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
-            // One dispatch per light, one z per layer of its shadow map (a point light's six
+            // One dispatch per layer of each light's shadow map (a point or area light's six
             // cube faces). One light writes its voxels at once. Several first mark which
             // voxels each finds, then each writes to its voxels the light of all the lights
             // that found them: a voxel's value is then the sum of what each light alone gives
             // it, the same whichever dispatch lands last (inject.comp).
             let dispatch_all = |phase: u32| {
-                for (light, (&layers, &stride)) in self.light_layers.iter().zip(&self.strides).enumerate() {
-                    let s = self.shadow_resolution.div_ceil(stride);
-                    self.inject.push(cmd, &[stride, light as u32, phase]);
-                    gpu::dispatch(ctx, cmd, [s, s, layers], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+                for (light, layers) in self.strides.iter().enumerate() {
+                    for (layer, stride) in layers.iter().enumerate() {
+                        let Some(stride) = *stride else { continue };
+                        let s = self.shadow_resolution.div_ceil(stride);
+                        self.inject.push(cmd, &[stride, light as u32, phase, layer as u32]);
+                        gpu::dispatch(ctx, cmd, [s, s, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
+                    }
                 }
             };
-            if self.light_layers.len() == 1 {
+            if self.strides.len() == 1 {
                 dispatch_all(INJECT_ONE);
             } else {
                 dispatch_all(INJECT_MARK);

@@ -29,7 +29,7 @@ use crate::gpu::{self, Context, GpuTimer, Image, ImageDesc, Timing};
 use crate::scene::file::Filter;
 use crate::scene::gpu::FrameUniforms;
 use crate::scene::gpu::SceneGpu;
-use crate::scene::{Light, Scene};
+use crate::scene::Scene;
 use crate::voxel::bricks::Storage;
 use crate::voxel::{VoxelGrid, VoxelVolume, VoxelizeMethod, Voxelizer};
 use bounce::BouncePass;
@@ -284,23 +284,6 @@ fn volume_key(u: &FrameUniforms, camera: bool) -> Vec<u8> {
     bytemuck::bytes_of(&k).to_vec()
 }
 
-/// World size of one shadow-map texel at the farthest scene point (for the injection warning).
-fn shadow_texel_size(light: &Light, bounds: &crate::scene::Aabb, resolution: u32) -> f32 {
-    let radius = bounds.size().length() * 0.5;
-    match *light {
-        Light::Directional { .. } => 2.0 * radius * 1.01 / resolution as f32,
-        Light::Point { position, .. } | Light::Area { center: position, .. } => {
-            // A cube face spans 90°: 2 tan 45° = 2 world units per unit of distance.
-            let far = (bounds.center() - position).length() + radius;
-            2.0 * far / resolution as f32
-        }
-        Light::Spot { position, outer_deg, .. } => {
-            let far = (bounds.center() - position).length() + radius;
-            2.0 * far * ((outer_deg + 1.0).to_radians()).tan() / resolution as f32
-        }
-    }
-}
-
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, options: RenderOptions) -> Result<Self> {
         let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
@@ -350,12 +333,18 @@ impl Renderer {
         let aniso = gi.filter == Filter::Aniso;
         let radiance = RadianceVolume::new(ctx, &voxels, gi.bounces > 1, temporal, chains)?;
         let occupied = &voxels.occupied;
-        // Each light's own stride, from its own shadow texels: a light's injection must not
-        // depend on the other lights.
-        let texels: Vec<f32> = (scene.lights.iter())
-            .map(|l| shadow_texel_size(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
+        // Each light's own strides, one a layer, from its own shadow texels: a light's
+        // injection must not depend on the other lights.
+        let res = scene.settings.shadow_resolution;
+        let texels: Vec<Vec<Option<f32>>> =
+            scene.lights.iter().map(|l| frame::layer_texel_sizes(l, &scene.mesh.bounds, res)).collect();
+        let strides = (texels.iter())
+            .map(|layers| {
+                (layers.iter())
+                    .map(|t| t.map(|t| inject::injection_stride(t, grid.voxel, options.inject_texels)))
+                    .collect()
+            })
             .collect();
-        let strides = texels.iter().map(|&t| inject::injection_stride(t, grid.voxel, options.inject_texels)).collect();
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none();
@@ -398,7 +387,7 @@ impl Renderer {
                 grid.dims_label()
             ));
         }
-        let texel = texels.iter().copied().fold(0.0, f32::max);
+        let texel = texels.iter().flatten().flatten().copied().fold(0.0, f32::max);
         if texel > 0.7 * grid.voxel {
             notes.push(format!(
                 "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m; lit voxels may be missed during injection (raise shadow.resolution)",

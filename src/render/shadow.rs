@@ -20,8 +20,6 @@ pub struct ShadowPass {
     ctx: Arc<Context>,
     /// One per layer of the map.
     pipelines: Vec<Pipeline>,
-    /// Each light's layers, in light order.
-    pub light_layers: Vec<u32>,
     pub map: Image,
 }
 
@@ -29,8 +27,7 @@ impl ShadowPass {
     /// `lights`: the scene's shadowed lights (a scene without one keeps one unused layer).
     pub fn new(ctx: &Arc<Context>, scene: &SceneGpu, resolution: u32, lights: &[Light]) -> Result<Self> {
         let usage = vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED;
-        let light_layers: Vec<u32> = lights.iter().map(super::frame::shadow_layers).collect();
-        let layers = light_layers.iter().sum::<u32>().max(1);
+        let layers = lights.iter().map(super::frame::shadow_layers).sum::<u32>().max(1);
         let map =
             Image::new(ctx, "shadow map", ImageDesc::d2_array(SHADOW_FORMAT, resolution, resolution, layers, usage))?;
         let pipeline = |layer: u32| {
@@ -63,7 +60,7 @@ impl ShadowPass {
                 scope::NONE,
             )
         })?;
-        Ok(ShadowPass { ctx: ctx.clone(), pipelines, light_layers, map })
+        Ok(ShadowPass { ctx: ctx.clone(), pipelines, map })
     }
 
     /// Renders the shadow map and leaves it ready for sampling in fragment and compute shaders.
