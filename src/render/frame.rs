@@ -118,10 +118,7 @@ pub fn layer_texel_sizes(light: &Light, bounds: &Aabb, resolution: u32) -> Vec<O
             vec![Some(2.0 * far * ((outer_deg + 1.0).to_radians()).tan() / res)]
         }
         Light::Point { position: at, .. } | Light::Area { center: at, .. } => {
-            let lit_side = match *light {
-                Light::Area { half_u, half_v, .. } => Some(half_u.cross(half_v).normalize_or_zero()),
-                _ => None,
-            };
+            let lit_side = light.lit_side();
             let corners: Vec<Vec3> = (0..8)
                 .map(|i| {
                     let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
@@ -226,7 +223,7 @@ impl FrameUniforms {
                 },
                 Light::Area { center, half_u, half_v, radiance } => LightGpu {
                     position: center.extend(config::LIGHT_AREA as f32),
-                    direction: half_u.cross(half_v).normalize_or_zero().extend(0.0),
+                    direction: light.lit_side().unwrap_or_default().extend(0.0),
                     color: radiance.extend(0.0),
                     cone: Vec4::new(0.0, 0.0, texel, first),
                     half_u: half_u.extend(0.0),

@@ -9,6 +9,7 @@ pub mod cones;
 pub mod file;
 pub mod gltf;
 pub mod gpu;
+pub mod light;
 pub mod obj;
 
 use std::path::{Path, PathBuf};
@@ -17,6 +18,7 @@ use glam::{Mat4, Vec3};
 
 use crate::error::{Error, Result};
 use file::{LightFile, SceneFile};
+pub use light::Light;
 
 /// Interleaved vertex as the GPU reads it (see `shaders-glsl/common/scene.glsl`).
 #[repr(C)]
@@ -177,76 +179,6 @@ impl Camera {
         let sx = ((x + 0.5) / self.width as f32 * 2.0 - 1.0) * t * aspect;
         let sy = (1.0 - (y + 0.5) / self.height as f32 * 2.0) * t;
         (self.eye, (f + r * sx + u * sy).normalize())
-    }
-}
-
-#[derive(Clone, Copy, Debug)]
-pub enum Light {
-    Spot {
-        position: Vec3,
-        direction: Vec3,
-        intensity: Vec3,
-        inner_deg: f32,
-        outer_deg: f32,
-    },
-    Directional {
-        direction: Vec3,
-        irradiance: Vec3,
-    },
-    /// Light from a point in every direction, `intensity` W/sr (a cube shadow map).
-    Point {
-        position: Vec3,
-        intensity: Vec3,
-    },
-    /// An emissive quad of the mesh (`area`): a parallelogram with corners `center ± half_u ±
-    /// half_v`, emitting `radiance` W/(m²·sr) from the side `half_u × half_v` points to (a cube
-    /// shadow map from its centre). The mesh keeps the quad's emission: the path tracer samples
-    /// those triangles, not this light.
-    Area {
-        center: Vec3,
-        half_u: Vec3,
-        half_v: Vec3,
-        radiance: Vec3,
-    },
-}
-
-impl Light {
-    /// Spot falloff: 1 inside `inner`, 0 beyond `outer`, linear in angle between.
-    pub fn spot_falloff(angle_deg: f32, inner_deg: f32, outer_deg: f32) -> f32 {
-        if outer_deg <= inner_deg {
-            return if angle_deg <= outer_deg { 1.0 } else { 0.0 };
-        }
-        ((outer_deg - angle_deg) / (outer_deg - inner_deg)).clamp(0.0, 1.0)
-    }
-
-    /// A copy with every emitted quantity scaled by `s`.
-    pub fn scaled(self, s: f32) -> Light {
-        match self {
-            Light::Spot { position, direction, intensity, inner_deg, outer_deg } => {
-                Light::Spot { position, direction, intensity: intensity * s, inner_deg, outer_deg }
-            }
-            Light::Directional { direction, irradiance } => {
-                Light::Directional { direction, irradiance: irradiance * s }
-            }
-            Light::Point { position, intensity } => Light::Point { position, intensity: intensity * s },
-            Light::Area { center, half_u, half_v, radiance } => {
-                Light::Area { center, half_u, half_v, radiance: radiance * s }
-            }
-        }
-    }
-
-    /// Whether the light stands for emissive triangles of the mesh ([`Light::Area`]).
-    pub fn is_mesh_emitter(&self) -> bool {
-        matches!(self, Light::Area { .. })
-    }
-
-    /// Where a point-like shadow map sits (a point light's position, an area light's centre).
-    pub fn cube_origin(&self) -> Option<Vec3> {
-        match *self {
-            Light::Point { position, .. } => Some(position),
-            Light::Area { center, .. } => Some(center),
-            _ => None,
-        }
     }
 }
 
