@@ -11,37 +11,55 @@ int light_count() {
     return int(frame.light_count.x);
 }
 
+// One edge's term of Arvo's sum (below), for corners `a`, `b` seen from the receiving point.
+vec3 arvo_edge(vec3 a, vec3 b) {
+    a = normalize(a);
+    b = normalize(b);
+    vec3 x = cross(a, b);
+    float s = length(x);
+    return s > 1e-7 ? x / s * atan(s, dot(a, b)) : vec3(0.0);
+}
+
 // An area light's irradiance at `p` on a plane of normal `n` (zero: no plane) as a vector:
 // returned length times dot(n, l) is the irradiance. Lambert's formula for a polygon in Arvo's
 // (1995) vector form: with the corners q_i seen from p, F = 1/2 sum theta_i normalize(q_i x q_i+1)
 // (theta_i the angle between q_i and q_i+1), and a plane facing the polygon receives
 // L |F . n| when the whole polygon lies above it; so the polygon is first clipped to n's
-// horizon (Sutherland-Hodgman against one plane: a quad keeps at most five corners). Light
-// leaves the side `direction` points to only.
+// horizon (Sutherland-Hodgman against one plane), edge by edge as the sum goes: an edge wholly
+// above counts whole, one that crosses counts its part above, and the clipped polygon's closing
+// edge runs along the horizon from where the outline leaves to where it comes back. Light leaves
+// the side `direction` points to only. The clipped corners are not stored: a local array indexed
+// in a loop made lavapipe's injection of every light, spots included, 7x slower (1085 against
+// 158 ms for the Cornell spot at 32³, docs/benchmarks.md).
 vec3 area_incident(LightData li, vec3 p, vec3 n, out vec3 l) {
     vec3 c = li.position.xyz - p;
     l = c / max(length(c), 1e-8);
     if (dot(c, li.direction.xyz) >= 0.0) return vec3(0.0);
     vec3 u = li.half_u.xyz, v = li.half_v.xyz;
-    // Counter-clockwise about the light's normal (u x v).
-    vec3 q[4] = vec3[4](c - u - v, c + u - v, c + u + v, c - u + v);
     bool clip = dot(n, n) > 0.0;
-    vec3 r[5];
-    int k = 0;
-    for (int i = 0; i < 4; i++) {
-        vec3 a = q[i], b = q[(i + 1) % 4];
-        float da = clip ? dot(a, n) : 1.0, db = clip ? dot(b, n) : 1.0;
-        if (da >= 0.0 && k < 5) r[k++] = a;
-        if ((da >= 0.0) != (db >= 0.0) && k < 5) r[k++] = a + (b - a) * (da / (da - db));
+    // Corners counter-clockwise about the light's normal (u x v): (-u -v), (+u -v), (+u +v), (-u +v).
+    vec3 a = c - u - v, leave = vec3(0.0), enter = vec3(0.0), f = vec3(0.0);
+    float da = clip ? dot(a, n) : 1.0;
+    bool cut = false;
+    for (int i = 1; i <= 4; i++) {
+        int k = i & 3;
+        vec3 b = c + u * (k == 1 || k == 2 ? 1.0 : -1.0) + v * (k >= 2 ? 1.0 : -1.0);
+        float db = clip ? dot(b, n) : 1.0;
+        vec3 x = a + (b - a) * (da / (da - db));
+        if (da >= 0.0 && db >= 0.0) {
+            f += arvo_edge(a, b);
+        } else if (da >= 0.0) {
+            f += arvo_edge(a, x);
+            leave = x;
+            cut = true;
+        } else if (db >= 0.0) {
+            f += arvo_edge(x, b);
+            enter = x;
+        }
+        a = b;
+        da = db;
     }
-    if (k < 3) return vec3(0.0);
-    vec3 f = vec3(0.0);
-    for (int i = 0; i < k; i++) {
-        vec3 a = normalize(r[i]), b = normalize(r[(i + 1) % k]);
-        vec3 x = cross(a, b);
-        float s = length(x);
-        if (s > 1e-7) f += x / s * atan(s, dot(a, b));
-    }
+    if (cut) f += arvo_edge(leave, enter);
     // Corners counter-clockwise about a normal facing p sum to a vector pointing away from them.
     f *= -0.5;
     float len = length(f);
