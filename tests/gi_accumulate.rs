@@ -16,8 +16,18 @@ use vct::scene::{Camera, Scene};
 const SIZE: u32 = 192;
 const RES: u32 = 64;
 
+/// The volume is kept while nothing it depends on changes, as in the viewer (the same image to
+/// the bit, tests/reuse_volume.rs): what these tests judge is the screen-space history, and
+/// rebuilding an unchanged volume every frame took most of their time.
 fn options(gi_scale: u32, gi_accumulate: bool) -> RenderOptions {
-    RenderOptions { resolution: Some(RES), view: View::Diffuse, gi_scale, gi_accumulate, ..Default::default() }
+    RenderOptions {
+        resolution: Some(RES),
+        view: View::Diffuse,
+        gi_scale,
+        gi_accumulate,
+        reuse_volume: true,
+        ..Default::default()
+    }
 }
 
 fn frame(r: &Renderer) -> FrameImages {
@@ -157,6 +167,7 @@ fn under_motion(ctx: &std::sync::Arc<vct::gpu::Context>, motion: Motion, scale: 
         view: View::Indirect,
         gi_scale,
         gi_accumulate,
+        reuse_volume: true,
         ..Default::default()
     };
     let mut renderers: Vec<Renderer> = [o(1, false), o(scale, true), o(scale, false)]

@@ -106,7 +106,7 @@ fn resize_recreates_the_swapchain_cleanly() {
 #[test]
 fn soak_keeps_gpu_and_host_memory_flat() {
     let text = run(
-        &["view", "--soak", "--frames", "541", "--width", "64", "--height", "64", "--res", "16", "--validation"],
+        &["view", "--soak", "--frames", "181", "--width", "64", "--height", "64", "--res", "16", "--validation"],
         true,
     );
     let line = text.lines().find(|l| l.starts_with("soak:")).unwrap_or_else(|| panic!("no soak report:\n{text}"));

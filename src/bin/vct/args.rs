@@ -257,7 +257,7 @@ pub struct ViewArgs {
     #[arg(long, value_parser = parse_size)]
     pub resize_to: Option<(u32, u32)>,
     /// Soak test: move camera and light, switch voxelizer and resolution on a schedule, and
-    /// compare GPU and host memory at frame 180 and 540 (use --frames 541 or more).
+    /// compare GPU and host memory at frame 60 and 180 (use --frames 181 or more).
     #[arg(long)]
     pub soak: bool,
     /// The on-screen overlay: FPS, per-pass GPU time, settings, voxel memory, the keys on H

@@ -259,8 +259,9 @@ fn view(args: ViewArgs) -> Result<()> {
     );
     if let (Some((g0, h0)), Some((g1, h1))) = (report.soak_baseline, report.soak_end) {
         println!(
-            "soak: GPU memory {:.2} MiB at frame 180, {:.2} MiB at the last same-settings frame; host resident {:.1} MiB, {:.1} MiB",
+            "soak: GPU memory {:.2} MiB at frame {}, {:.2} MiB at the last same-settings frame; host resident {:.1} MiB, {:.1} MiB",
             g0 as f64 / 1048576.0,
+            vct::viewer::SOAK_CYCLE,
             g1 as f64 / 1048576.0,
             h0 as f64 / 1048576.0,
             h1 as f64 / 1048576.0
