@@ -21,7 +21,8 @@ use super::shadow::ShadowPass;
 use super::Targets;
 use crate::error::Result;
 use crate::gpu::{
-    self, scope, shaders, Binding, Context, DescriptorSet, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler, Stage,
+    self, scope, shaders, Binding, Context, DescriptorSet, GpuTimer, GraphicsDesc, Image, ImageDesc, Pipeline, Sampler,
+    Stage,
 };
 use crate::scene::gpu::{vertex_layout, SceneGpu};
 
@@ -298,8 +299,9 @@ impl DeferredShadePass {
         }
     }
 
-    /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL).
-    pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets) {
+    /// One compute thread per pixel shades into `targets.hdr` (left in GENERAL); the reduced
+    /// tracing and the accumulation before it are timed as spans of their own in `timer`.
+    pub fn record_shade(&self, cmd: vk::CommandBuffer, scene: &SceneGpu, targets: &Targets, timer: &GpuTimer) {
         let ctx = &self.ctx;
         targets.hdr_for_compute(ctx, cmd);
         let rw = scope::COMPUTE_RW;
@@ -322,18 +324,18 @@ impl DeferredShadePass {
             trace.bind_set(cmd, 2, set);
             let (w, h) = (self.diffuse_low.desc.extent.width, self.diffuse_low.desc.extent.height);
             let local = crate::config::WORKGROUP_2D;
-            gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]);
+            timer.span(cmd, "trace", || gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]));
             gpu::memory_barrier(ctx, cmd, rw, rw);
         }
         if let Some(accumulate) = &self.accumulate_pipeline {
             accumulate.bind(cmd, &[scene.set.raw]);
             accumulate.bind_set(cmd, 2, set);
-            targets.dispatch_per_pixel(ctx, cmd);
+            timer.span(cmd, "accumulate", || targets.dispatch_per_pixel(ctx, cmd));
             gpu::memory_barrier(ctx, cmd, rw, rw);
         }
         self.shade_pipeline.bind(cmd, &[scene.set.raw]);
         self.shade_pipeline.bind_set(cmd, 2, set);
-        targets.dispatch_per_pixel(ctx, cmd);
+        timer.span(cmd, "shade pixels", || targets.dispatch_per_pixel(ctx, cmd));
         gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
     }
 }

@@ -470,7 +470,7 @@ impl Renderer {
                 t.span(cmd, "volume view", || self.volume_view.record(cmd, scene, targets));
             } else if let Some(d) = &self.deferred {
                 t.span(cmd, "gbuffer", || d.record_gbuffer(cmd, scene, targets));
-                t.span(cmd, "shade", || d.record_shade(cmd, scene, targets));
+                t.span(cmd, "shade", || d.record_shade(cmd, scene, targets, t));
             } else {
                 t.span(cmd, "depth prepass", || self.prepass.record(cmd, scene, targets));
                 t.span(cmd, "shade", || self.shade.record(cmd, scene, targets));
