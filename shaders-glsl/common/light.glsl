@@ -7,6 +7,13 @@
 #define VCT_LIGHT_GLSL
 #include "frame.glsl"
 
+// An includer that knows no light is an area light defines this false (a specialization
+// constant): inlined into injection's loop over the lights, the polygon's code, though never run
+// for a spot, kept its injection at 1.7-2x the time it took without (docs/benchmarks.md).
+#ifndef VCT_AREA_LIGHTS
+#define VCT_AREA_LIGHTS true
+#endif
+
 int light_count() {
     return int(frame.light_count.x);
 }
@@ -72,7 +79,7 @@ vec3 area_incident(LightData li, vec3 p, vec3 n, out vec3 l) {
 // zero for none, see area_incident); `l` gets the unit vector towards the light.
 vec3 light_incident(int j, vec3 p, vec3 n, out vec3 l) {
     LightData li = frame.lights[j];
-    if (uint(li.position.w) == LIGHT_AREA) return area_incident(li, p, n, l);
+    if (VCT_AREA_LIGHTS && uint(li.position.w) == LIGHT_AREA) return area_incident(li, p, n, l);
     if (uint(li.position.w) == LIGHT_DIRECTIONAL) {
         l = -li.direction.xyz;
         return li.color.rgb;

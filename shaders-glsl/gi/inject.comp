@@ -16,6 +16,10 @@
 // needs no marks (INJECT_ONE): its texels are what finds its voxels.
 #define VCT_OWN_PUSH
 #include "frame.glsl"
+// Whether any of the scene's lights is an area light (render::inject); without one the polygon's
+// code is compiled out of the light loop below (common/light.glsl).
+layout(constant_id = 3) const bool AREA_LIGHTS = true;
+#define VCT_AREA_LIGHTS AREA_LIGHTS
 #include "light.glsl"
 #include "rgb9e5.glsl"
 #include "lit_side.glsl"

@@ -52,6 +52,8 @@ pub fn injection_stride(texel: f32, voxel: f32, texels_per_voxel: f32) -> u32 {
 }
 
 impl InjectPass {
+    /// `area_lights`: whether any light is an area light (specialization constant).
+    #[allow(clippy::too_many_arguments)] // the passes it reads, its strides and two switches
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
@@ -60,6 +62,7 @@ impl InjectPass {
         radiance: &RadianceVolume,
         strides: Vec<Vec<Option<u32>>>,
         listed: bool,
+        area_lights: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -112,7 +115,8 @@ impl InjectPass {
         let inject = Pipeline::compute(
             ctx,
             "inject",
-            Stage::new(c, shaders::GI_INJECT_COMP).spec(&bricks.spec(0)),
+            // Constant 3: whether any light is an area light (else its code is compiled out).
+            Stage::new(c, shaders::GI_INJECT_COMP).spec(&[bricks.spec(0).as_slice(), &[area_lights as u32]].concat()),
             &[scene.set.layout, inject_set.layout],
             16,
         )?;

@@ -345,7 +345,8 @@ impl Renderer {
                     .collect()
             })
             .collect();
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed)?;
+        let area = scene.lights.iter().any(|l| matches!(l, crate::scene::Light::Area { .. }));
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed, area)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none();
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed, fixed)?;
