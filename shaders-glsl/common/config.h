@@ -98,7 +98,8 @@
 // Soft edge of "facing away" (a dot product of unit vectors): light whose surface normal is
 // within this of perpendicular to the view counts in part.
 #define LIT_SIDE_EDGE 0.25
-// Narrowest specular cone (full aperture, radians): 0.1 pi roughness, never below this.
+// Narrowest specular cone (full aperture, radians): as wide as the GGX lobe (common/shading.glsl,
+// specular_aperture), never below this.
 #define MIN_SPECULAR_APERTURE 0.02
 // Debug views (FrameUniforms.view.x).
 // The viewer's on-screen overlay (post/overlay.comp): a block of text cells, each an 8x8 glyph

@@ -1,7 +1,7 @@
 // Surface shading shared by the forward fragment shader and the deferred compute shader
 // (Freed 2018 §4.5, Algorithm 3): emission plus Cook-Torrance direct light (3x3 PCF shadow)
 // plus indirect light by voxel cone tracing — the diffuse cone set (common/gather.glsl) and one
-// specular cone along the reflection (aperture 0.1 pi roughness), either traced here or given
+// specular cone along the reflection (as wide as the GGX lobe), either traced here or given
 // (traced at a reduced resolution: shade/deferred.comp). Diffuse-cone occlusion gives
 // ambient occlusion.
 // The includer binds `shadow_map` (sampler2DArrayShadow: one layer, or a point light's six), `radiance_volume` (sampler3D), the moment
@@ -50,11 +50,19 @@ vec3 specular_f0(Material m, vec3 albedo) {
     return mix(m.specular.rgb, albedo, m.albedo.a);
 }
 
+// The specular cone's full aperture for a material of `roughness`: as wide as the lobe the
+// Cook-Torrance term reflects. GGX's D (alpha = roughness^2, common/brdf.glsl) falls to half its
+// peak where tan(theta_h) = alpha sqrt(sqrt(2) - 1), and the reflected directions spread twice as
+// far as the half vectors, so the cone's half angle is 2 theta_h.
+float specular_aperture(float roughness) {
+    float alpha = roughness * roughness;
+    return max(4.0 * atan(alpha * sqrt(sqrt(2.0) - 1.0)), MIN_SPECULAR_APERTURE);
+}
+
 // The radiance the specular cone (along the reflection of the view direction `v` about `n`,
-// aperture 0.1 pi roughness) brings, before the Fresnel factor.
+// `specular_aperture` wide) brings, before the Fresnel factor.
 vec3 specular_cone(Material m, vec3 uvw, vec3 n, vec3 v, ConeParams p) {
-    float spec_aperture = max(0.1 * PI * m.emissive.a, MIN_SPECULAR_APERTURE);
-    return trace_frame_cone(uvw, n, reflect(-v, n), tan(0.5 * spec_aperture), p).rgb;
+    return trace_frame_cone(uvw, n, reflect(-v, n), tan(0.5 * specular_aperture(m.emissive.a)), p).rgb;
 }
 
 // The shading normal turned to the side facing the viewer (surfaces are two-sided).
