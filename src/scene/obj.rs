@@ -22,6 +22,14 @@ fn parse_floats(s: &str) -> Option<Vec3> {
     }
 }
 
+/// The perceptual roughness (GGX alpha = roughness², common/brdf.glsl) of a Phong exponent `ns`:
+/// Walter et al. 2007 (§5.2) match the Phong lobe by alpha = sqrt(2 / (ns + 2)). (This took that
+/// alpha for the roughness itself, squaring it once more: the classic Cornell box's boxes, `Ns
+/// 200`, got alpha 0.0099 for the paper's 0.0995, a near mirror.)
+pub fn roughness_of_phong(ns: f32) -> f32 {
+    (2.0 / (ns.max(0.0) + 2.0)).sqrt().sqrt()
+}
+
 fn fmt_colour(v: Vec3) -> String {
     format!("{} {} {}", v.x, v.y, v.z)
 }
@@ -73,11 +81,8 @@ fn convert_material(
         .or_else(|| m.unknown_param.get("Ke").and_then(|s| parse_floats(s)))
         .unwrap_or(Vec3::ZERO);
     let param = |k: &str| m.unknown_param.get(k).and_then(|s| s.trim().parse::<f32>().ok());
-    // Roughness: PBR extension `Pr`, else from the Phong exponent (Walter et al. 2007 mapping).
-    let roughness = param("Pr")
-        .or_else(|| m.shininess.map(|ns| (2.0 / (ns.max(0.0) + 2.0)).sqrt()))
-        .unwrap_or(0.8)
-        .clamp(0.02, 1.0);
+    // Roughness: PBR extension `Pr`, else from the Phong exponent.
+    let roughness = param("Pr").or_else(|| m.shininess.map(roughness_of_phong)).unwrap_or(0.8).clamp(0.02, 1.0);
     let metallic = param("Pm").unwrap_or(0.0).clamp(0.0, 1.0);
     let specular = m.specular.map(Vec3::from).unwrap_or(Vec3::splat(0.04));
     let tex_path = |t: &String| dir.join(t.trim().replace('\\', "/"));
@@ -335,5 +340,21 @@ pub(super) fn compute_tangents(vertices: &mut [Vertex], indices: &[u32]) {
         let t = if t == Vec3::ZERO { n.any_orthonormal_vector() } else { t };
         let w = if n.cross(t).dot(bit[i]) < 0.0 { -1.0 } else { 1.0 };
         v.tangent = [t.x, t.y, t.z, w];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::roughness_of_phong;
+
+    /// Walter et al. 2007: alpha = sqrt(2 / (ns + 2)), and vct's GGX takes alpha = roughness².
+    #[test]
+    fn a_phong_exponent_maps_to_walters_alpha() {
+        for ns in [0.0f32, 1.0, 10.0, 200.0, 1000.0] {
+            let alpha = roughness_of_phong(ns).powi(2);
+            assert!((alpha - (2.0 / (ns + 2.0)).sqrt()).abs() < 1e-6, "Ns {ns}: alpha {alpha}");
+        }
+        assert_eq!(roughness_of_phong(0.0), 1.0);
+        assert!((roughness_of_phong(200.0).powi(2) - 0.0995).abs() < 1e-4);
     }
 }
