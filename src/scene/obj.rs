@@ -23,7 +23,7 @@ fn parse_floats(s: &str) -> Option<Vec3> {
 }
 
 /// The perceptual roughness (GGX alpha = roughness², common/brdf.glsl) of a Phong exponent `ns`:
-/// Walter et al. 2007 (§5.2) match the Phong lobe by alpha = sqrt(2 / (ns + 2)). (This took that
+/// Walter et al. 2007 match the Phong lobe by alpha = sqrt(2 / (ns + 2)). (This took that
 /// alpha for the roughness itself, squaring it once more: the classic Cornell box's boxes, `Ns
 /// 200`, got alpha 0.0099 for the paper's 0.0995, a near mirror.)
 pub fn roughness_of_phong(ns: f32) -> f32 {
