@@ -345,7 +345,7 @@ impl Renderer {
                     .collect()
             })
             .collect();
-        let area = scene.lights.iter().any(|l| matches!(l, crate::scene::Light::Area { .. }));
+        let area = scene.lights.iter().any(crate::scene::Light::is_mesh_emitter);
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed, area)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none();
