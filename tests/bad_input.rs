@@ -133,7 +133,24 @@ fn cli_reports_bad_input_without_panicking() {
     let (code, err) = vct(&["render", d.join("scene.txt").to_str().unwrap()]);
     assert_eq!(code, 1);
     assert!(err.contains("scene.txt"), "{err}");
-    for (flag, value) in [("--temporal", "0"), ("--temporal", "NaN"), ("--cone-bias", "20"), ("--cone-bias", "x")] {
+    // A warped volume keeps no temporal history; the cube view draws an even grid.
+    let (code, err) =
+        vct(&["render", "--warp", "function", "--temporal", "0.5", "--out", d.join("v.png").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("temporal") && err.contains("warped"), "{err}");
+    let (code, err) = vct(&["voxelize", "--warp", "function", "--view", d.join("u.png").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("--warp"), "{err}");
+    for (flag, value) in [
+        ("--temporal", "0"),
+        ("--temporal", "NaN"),
+        ("--cone-bias", "20"),
+        ("--cone-bias", "x"),
+        ("--warp-slope", "0"),
+        ("--warp-slope", "1.5"),
+        ("--warp-slope", "inf"),
+        ("--warp", "perspective"),
+    ] {
         let (code, err) = vct(&["render", flag, value, "--out", d.join("w.png").to_str().unwrap()]);
         assert_eq!(code, 2, "{flag} {value}: {err}");
         assert!(err.contains(flag), "{flag} {value}: {err}");

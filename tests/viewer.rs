@@ -51,10 +51,10 @@ fn difference(a: &Path, b: &Path) -> (f64, f64) {
 }
 
 /// The viewer's last frame against the headless render of the same scene and camera, with the
-/// viewer's context made under `env`.
-fn viewer_matches_headless(name: &str, env: &[(&str, &str)]) {
+/// viewer's context made under `env`, both given `extra`.
+fn viewer_matches_headless(name: &str, env: &[(&str, &str)], extra: &[&str]) {
     let (shot, headless) = (out(&format!("{name}-shot.png")), out(&format!("{name}-headless.png")));
-    let common = ["--res", "32", "--voxelizer", "raster", "--validation"];
+    let common = [&["--res", "32", "--voxelizer", "raster", "--validation"][..], extra].concat();
     let view = [&["view", "--frames", "30", "--screenshot", shot.to_str().unwrap()][..], &common].concat();
     run_with(&view, true, env);
     run(&[&["render", "--out", headless.to_str().unwrap()][..], &common].concat(), false);
@@ -65,7 +65,14 @@ fn viewer_matches_headless(name: &str, env: &[(&str, &str)]) {
 
 #[test]
 fn viewer_frames_match_the_headless_render() {
-    viewer_matches_headless("plain", &[]);
+    viewer_matches_headless("plain", &[], &[]);
+}
+
+/// Issue "detail where the camera is": the viewer refocuses a warped grid on the camera every
+/// frame (Freed 2018 §4.6.1); a still camera's frame is the headless render's.
+#[test]
+fn a_warped_grid_in_the_viewer_matches_the_headless_render() {
+    viewer_matches_headless("warped", &[], &["--warp", "function"]);
 }
 
 /// Issue "frame time": the viewer keeps two frames in flight (the CPU records one while the GPU
@@ -76,7 +83,7 @@ fn two_frames_in_flight_raise_no_synchronization_hazard() {
     assert_eq!(vct::gpu::FRAMES_IN_FLIGHT, 2);
     // The layer checks between submissions only when asked (Vulkan SDK 1.3.239: an alpha check).
     let submit = "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT";
-    viewer_matches_headless("sync", &[("VCT_VALIDATION", "sync"), ("VK_LAYER_ENABLES", submit)]);
+    viewer_matches_headless("sync", &[("VCT_VALIDATION", "sync"), ("VK_LAYER_ENABLES", submit)], &[]);
 }
 
 #[test]

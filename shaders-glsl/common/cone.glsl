@@ -22,9 +22,14 @@
 //   what keeps the lit outside of a thin wall from shining into the room through the
 //   directional chains that see the wall edge-on (`facing_across`).
 // A cone ends when 95% opaque or when it leaves the volume.
+// A cone marches in the unwarped grid, where it is straight. In a warped grid (Freed 2018 §4.6)
+// each sample is warped to its texture coordinates, and its level and step follow the local
+// texel size: a texel there is 1/s of a grid voxel along each axis (s the warp's slope), and the
+// cone's diameter is measured in texels of the geometric mean of the three.
 #ifndef VCT_CONE_GLSL
 #define VCT_CONE_GLSL
 #include "config.h"
+#include "warp.glsl"
 
 struct ConeParams {
     int steps;         // maximum samples
@@ -39,6 +44,8 @@ struct ConeParams {
                        // plane (voxels): half a voxel for a point on the surface
     vec3 atlas;        // the directional chains' atlas (frame.glsl, aniso_atlas)
     float chain_base;  // the isotropic chain's mip that holds level 1 (0: a chain of its own)
+    vec4 warp;         // the grid's warp (common/warp.glsl; w = 1: none)
+    float normal_fine; // texels per grid voxel along the normal where the cone starts (at_start)
 };
 
 // Level 0 at `pos`, trilinearly filtered (common/level0.glsl, or the includer's own).
@@ -79,6 +86,27 @@ float self_clamp_level(float height, float surface) {
     return log2(max((height - surface) / 1.5, 1.0)) - 1.0;
 }
 
+// Texels per grid voxel at grid fraction `pos` of a warped grid: the geometric mean of the
+// three axes' slopes.
+float warp_fine(vec3 pos, vec4 warp) {
+    vec3 s = warp_slope(pos, warp);
+    return exp2((log2(s.x) + log2(s.y) + log2(s.z)) / 3.0);
+}
+
+// A cone's start offsets are in texels: in a warped grid, in the texels where it starts, as
+// deep as they reach along the normal (a cone leaving a wall whose texels are four grid voxels
+// thick starts four times as far out, clear of them, as it does from a wall of even texels).
+ConeParams at_start(ConeParams p, vec3 uvw, vec3 normal) {
+    if (warp_on(p.warp)) {
+        vec3 n = abs(normal);
+        float deep = dot(n, 1.0 / warp_slope(uvw, p.warp)) / max(n.x + n.y + n.z, 1e-6);
+        p.bias *= deep;
+        p.start *= deep;
+        p.normal_fine = 1.0 / deep;
+    }
+    return p;
+}
+
 // The state of a cone along its march.
 struct March {
     vec3 color;
@@ -86,22 +114,29 @@ struct March {
     float dist;
 };
 
-// Where the cone's next sample lies, its level and its step (false once it leaves the volume).
+// Where the cone's next sample lies (texture coordinates), its level and its step (grid
+// voxels; false once it leaves the volume). `start` and the march are in the unwarped grid.
 bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, ConeParams p, out vec3 pos,
                  out float level, out float step) {
-    float diameter = max(2.0 * m.dist * tan_half, 1.0);
     pos = start + m.dist * dir / p.dims;
+    // Texels per grid voxel here (1 unwarped).
+    float fine = warp_on(p.warp) ? warp_fine(pos, p.warp) : 1.0;
+    float diameter = max(2.0 * m.dist * tan_half * fine, 1.0);
     float l = log2(diameter) + p.lod_offset;
-    if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) l = min(l, self_clamp_level(p.bias + m.dist * rise, p.surface));
+    if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) {
+        l = min(l, self_clamp_level((p.bias + m.dist * rise) * p.normal_fine, p.surface));
+    }
     // Past the coarsest level (a grid's shortest axis is one texel there) a texel no longer
     // grows with the cone: the cone samples that level, stepping by its texel.
     level = clamp(l, 0.0, p.max_level);
-    step = p.step * exp2(level);
+    step = p.step * exp2(level) / fine;
     // The cone has left the volume once its sample's trilinear filter no longer reaches inside:
     // half a texel of its level beyond the edge. Stopping at the edge itself cut short the filter
     // of every texel on the boundary, so walls the grid is fitted to lost a fifth of their light.
-    vec3 reach = 0.5 * exp2(level) / p.dims;
-    return all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
+    vec3 reach = 0.5 * exp2(level) / fine / p.dims;
+    bool inside = all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
+    if (warp_on(p.warp)) pos = warp_forward(pos, p.warp);
+    return inside;
 }
 
 // The radiance moment at a sample of `level`: the moment volume starts at level 1 (its mip 0;
@@ -225,8 +260,8 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
 // thesis). `volume` holds level 0. `tan_half`: tangent of the cone's half aperture.
 vec4 trace_cone_filtered(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw,
                          vec3 normal, vec3 dir, float tan_half, ConeParams p) {
-    if (aniso) return march_aniso(volume, moment, atlas, uvw, normal, dir, tan_half, p);
-    return march_iso(volume, chain, moment, uvw, normal, dir, tan_half, p);
+    if (aniso) return march_aniso(volume, moment, atlas, uvw, normal, dir, tan_half, at_start(p, uvw, normal));
+    return march_iso(volume, chain, moment, uvw, normal, dir, tan_half, at_start(p, uvw, normal));
 }
 
 // The thesis' isotropic cone trace (Listing 4.1) through one texture with the whole mip chain

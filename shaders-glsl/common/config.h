@@ -116,5 +116,10 @@
 #define VIEW_AO 5
 #define VIEW_VOXELS 6
 #define VIEW_RADIANCE 7
+#define VIEW_TEXELS 8
+
+// The specialization constant WARPED (common/warp.glsl) of every pipeline: whether the grid is
+// warped (gpu::pipeline::Stage::warped). Above every other constant id a shader declares.
+#define WARP_CONSTANT_ID 16
 
 #endif

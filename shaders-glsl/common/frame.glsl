@@ -3,6 +3,7 @@
 #ifndef VCT_FRAME_GLSL
 #define VCT_FRAME_GLSL
 #include "config.h"
+#include "warp.glsl"
 
 // One light (render::frame::LightGpu).
 struct LightData {
@@ -36,16 +37,50 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 gi_jitter;          // xy: the pixel of each GI_SCALE block the diffuse cones trace this
                              // frame; z: a history to accumulate with (1) or none (0);
                              // w: the camera moved since the last frame (1)
+    vec4 voxel_warp;         // the grid's warp (common/warp.glsl): xyz centre, w end slope (1: none)
 } frame;
 
-// World position to voxel coordinates (voxel v spans [v, v + 1)).
-vec3 world_to_voxel(vec3 p) {
+// World position to unwarped grid coordinates (voxels of the even grid).
+vec3 world_to_grid(vec3 p) {
     return (p - frame.voxel_origin.xyz) / frame.voxel_origin.w;
 }
 
-// World position to normalized voxel-texture coordinates [0, 1]^3.
+// Grid coordinates to texel coordinates (texel v spans [v, v + 1)), through the warp if any.
+vec3 grid_to_texel(vec3 g) {
+    if (!warp_on(frame.voxel_warp)) return g;
+    return warp_forward(g / frame.voxel_dims.xyz, frame.voxel_warp) * frame.voxel_dims.xyz;
+}
+
+// World position to texel coordinates.
+vec3 world_to_voxel(vec3 p) {
+    return grid_to_texel(world_to_grid(p));
+}
+
+// World position to normalized texture coordinates [0, 1]^3.
 vec3 world_to_uvw(vec3 p) {
     return world_to_voxel(p) / frame.voxel_dims.xyz;
+}
+
+// World position to the unwarped grid fraction [0, 1]^3 a cone marches in (common/cone.glsl
+// warps each sample).
+vec3 world_to_march(vec3 p) {
+    return world_to_grid(p) / frame.voxel_dims.xyz;
+}
+
+// The grid fraction of texel `v`'s centre.
+vec3 texel_centre_march(ivec3 v) {
+    vec3 w = (vec3(v) + 0.5) / frame.voxel_dims.xyz;
+    return warp_on(frame.voxel_warp) ? warp_inverse(w, frame.voxel_warp) : w;
+}
+
+// The world position of texel `v`'s centre.
+vec3 texel_centre_world(ivec3 v) {
+    return frame.voxel_origin.xyz + texel_centre_march(v) * frame.voxel_dims.xyz * frame.voxel_origin.w;
+}
+
+// Texels per grid voxel where they are finest (1 unwarped).
+float warp_peak() {
+    return 1.5 - 0.5 * min(frame.voxel_warp.w, 1.0);
 }
 
 // Whether voxel `v` lies inside the grid.

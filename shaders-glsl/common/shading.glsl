@@ -70,6 +70,16 @@ vec3 facing_normal(vec3 n, vec3 world) {
     return dot(n, frame.camera_pos.xyz - world) < 0.0 ? -n : n;
 }
 
+// The texel size at `world` as a colour, after the thesis' Figure 5.7: green where texels are an
+// even grid's, towards blue where they are finer (1.5 times: full blue) and towards red where
+// they are coarser (4 times: full red).
+vec3 texel_size_colour(vec3 world) {
+    vec3 s = warp_on(frame.voxel_warp) ? warp_slope(world_to_march(world), frame.voxel_warp) : vec3(1.0);
+    float t = (log2(s.x) + log2(s.y) + log2(s.z)) / 3.0;
+    vec3 even = vec3(0.1, 0.8, 0.1);
+    return t >= 0.0 ? mix(even, vec3(0.1, 0.2, 1.0), min(t / log2(1.5), 1.0)) : mix(even, vec3(1.0, 0.1, 0.1), min(-t / 2.0, 1.0));
+}
+
 // Radiance leaving `world` towards the camera (or the debug view chosen in frame.view), for
 // material `m` with its textures already applied: `albedo` and shading normal `n`. `given`:
 // the diffuse cones' gather (rgb light, a occlusion) was traced elsewhere (at a reduced
@@ -93,7 +103,7 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
     float occlusion = 0.0;
     if (frame.view.z > 0.5) {
         ConeParams p = frame_cone_params();
-        vec3 uvw = world_to_uvw(world);
+        vec3 uvw = world_to_march(world);
         vec4 gathered = given ? gathered_in : gather_diffuse(uvw, n, p);
         occlusion = gathered.a;
         // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
@@ -113,6 +123,7 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
         case VIEW_DIFFUSE: result = diffuse; break;
         case VIEW_SPECULAR: result = specular; break;
         case VIEW_AO: result = vec3(1.0 - occlusion); break;
+        case VIEW_TEXELS: result = texel_size_colour(world); break;
         default: result = m.emissive.rgb + direct + indirect; break;
     }
     return result;

@@ -4,6 +4,7 @@
 #ifndef VCT_VOXEL_GLSL
 #define VCT_VOXEL_GLSL
 #include "config.h"
+#include "warp.glsl"
 
 layout(set = 2, binding = 0) uniform VoxelParams {
     vec4 origin_size;   // xyz: grid origin (world); w: voxel edge length
@@ -11,6 +12,7 @@ layout(set = 2, binding = 0) uniform VoxelParams {
     vec4 tess;          // x: tessellation level scale; y: max tessellation level; z: raster viewport scale
     uvec4 dims;         // xyz: voxels along each axis
     mat4 camera;        // world to clip: the view the point voxelizer's refinement sees
+    vec4 warp;          // the grid's warp (common/warp.glsl): xyz centre, w end slope (1: none)
 } voxel;
 
 // Whether voxel `coord` lies inside the grid.
@@ -32,8 +34,32 @@ layout(set = 2, binding = 3, r32ui) uniform coherent volatile uimage3D voxel_emi
 #define BRICKS_CLAIM
 #include "bricks.glsl"
 
-vec3 to_voxel_space(vec3 world) {
+// World position to unwarped grid coordinates (voxels of the even grid; the voxelizers
+// rasterize and tessellate here, where triangles stay flat).
+vec3 to_grid_space(vec3 world) {
     return (world - voxel.origin_size.xyz) / voxel.origin_size.w;
+}
+
+// World position to texel coordinates (texel v spans [v, v + 1)), through the warp if any.
+vec3 to_voxel_space(vec3 world) {
+    vec3 g = to_grid_space(world);
+    if (!warp_on(voxel.warp)) return g;
+    vec3 n = vec3(voxel.dims.xyz);
+    return warp_forward(g / n, voxel.warp) * n;
+}
+
+// Texel `v`'s box in grid coordinates: its centre and half size (a warped texel is a box of its
+// own size, each axis being warped on its own).
+void texel_box(ivec3 v, out vec3 centre, out vec3 half_size) {
+    if (!warp_on(voxel.warp)) {
+        centre = vec3(v) + 0.5;
+        half_size = vec3(0.5);
+        return;
+    }
+    vec3 n = vec3(voxel.dims.xyz);
+    vec3 lo = warp_inverse(vec3(v) / n, voxel.warp) * n, hi = warp_inverse(vec3(v + 1) / n, voxel.warp) * n;
+    centre = 0.5 * (lo + hi);
+    half_size = 0.5 * (hi - lo);
 }
 
 uint pack_rgba8(vec4 v) {

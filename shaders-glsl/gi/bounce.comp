@@ -47,7 +47,7 @@ void main() {
     }
     n = normalize(n);
     vec3 albedo = vec3(float(a & 0xffu), float((a >> 8) & 0xffu), float((a >> 16) & 0xffu)) / 255.0;
-    vec3 uvw = (vec3(v) + 0.5) / vec3(size);
+    vec3 uvw = texel_centre_march(v);
     // From a voxel's centre: its surface may lie half a voxel above it, with a second layer of
     // the same wall above that (a wall on a voxel boundary), so the cones start a voxel further
     // out and keep their filters 1.5 voxels clear (common/cone.glsl, self_clamp_level).

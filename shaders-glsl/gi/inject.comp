@@ -73,9 +73,11 @@ void main() {
     // In voxel units, from a quarter voxel before the point, one voxel at a time: a step no
     // longer than a voxel cannot jump over a wall's voxel layer. Mostly two loads: the surface's
     // voxel and the empty one before it.
-    vec3 g = world_to_voxel(p) - l_dir * 0.25;
-    for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= l_dir) {
-        ivec3 u = ivec3(floor(g));
+    // A warped grid's texels are up to warp_peak() to a grid voxel: steps that long at most.
+    vec3 walk = l_dir / warp_peak();
+    vec3 g = world_to_grid(p) - walk * 0.25;
+    for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= walk) {
+        ivec3 u = ivec3(floor(grid_to_texel(g)));
         if (!voxel_in_grid(u)) break;
         ivec3 at = stored_at(u);
         uint b = imageLoad(voxel_albedo, at).r;
@@ -99,7 +101,7 @@ void main() {
         return;
     }
     uint lights = push.phase == INJECT_ONE ? 1u << j : imageLoad(lit_side, t).r >> 24;
-    vec3 centre = frame.voxel_origin.xyz + (vec3(v) + 0.5) * frame.voxel_origin.w;
+    vec3 centre = texel_centre_world(v);
     vec3 normal = unpack(imageLoad(voxel_normal, t).r).xyz * 2.0 - 1.0;
     vec3 albedo = unpack(a).rgb;
     bool oriented = length(normal) > 1e-3;

@@ -20,7 +20,8 @@ void main() {
     vec2 ndc = (vec2(px) + 0.5) / frame.viewport.xy * 2.0 - 1.0;
     vec4 near = frame.inv_view_proj * vec4(ndc, 0.0, 1.0);
     vec4 far = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
-    vec3 o = world_to_uvw(near.xyz / near.w), e = world_to_uvw(far.xyz / far.w);
+    // The ray is straight in the unwarped grid; each sample is warped to its texel.
+    vec3 o = world_to_march(near.xyz / near.w), e = world_to_march(far.xyz / far.w);
     vec3 d = normalize(e - o);
     // Clip the ray to the unit cube.
     vec3 inv = 1.0 / d;
@@ -31,9 +32,9 @@ void main() {
     bool radiance = uint(frame.view.x) == VIEW_RADIANCE;
     float level = radiance ? frame.view.y : 0.0;
     // Half a texel of the level along the longest axis (the finest in texture space).
-    float step = 0.5 * exp2(level) / frame.voxel_grid.x;
+    float step = 0.5 * exp2(level) / frame.voxel_grid.x / warp_peak();
     for (float t = tmin; t < tmax; t += step) {
-        vec3 p = o + d * t;
+        vec3 p = grid_to_texel((o + d * t) * frame.voxel_dims.xyz) / frame.voxel_dims.xyz;
         if (radiance) {
             vec4 s = level < 0.5 ? level0_sample(radiance_volume, p) : textureLod(radiance_chain, p, level - 1.0);
             if (s.a > 0.3) { color = s.rgb / s.a; break; }

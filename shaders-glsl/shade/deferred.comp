@@ -191,7 +191,7 @@ void main() {
         vec4 g = vec4(0.0), s = vec4(0.0);
         ivec2 traced = traced_pixel(px);
         if (frame.view.z > 0.5 && surface_at(traced, world, n)) {
-            vec3 uvw = world_to_uvw(world);
+            vec3 uvw = world_to_march(world);
             ConeParams p = frame_cone_params();
             g = gather_diffuse(uvw, n, p);
             if (SPECULAR_REDUCED) {

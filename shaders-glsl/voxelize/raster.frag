@@ -6,6 +6,10 @@
 // writes those whose voxel the triangle really touches (triangle/box test); without, only
 // the layer at the pixel centre's depth (the thesis' method). Conservative coverage
 // (raster.geom) needs the depth span: its extra fragments are kept only where the test passes.
+// In a warped grid (Freed 2018 §4.6.1) the pixel is a box of the unwarped grid, and the texels
+// tested are those its box (over the plane's depth span) warps onto, each as the box it is in
+// the unwarped grid: coverage stays exact however the warp stretches texels, where the thesis
+// raised the viewport resolution by the warp's largest slope and still sampled points.
 #include "frame.glsl"
 #include "material_textures.glsl"
 #include "voxel.glsl"
@@ -27,6 +31,40 @@ vec3 unswizzle(vec3 v, uint axis) {
     return axis == 0u ? v.zxy : (axis == 1u ? v.yzx : v);
 }
 
+vec3 swizzle(vec3 v, uint axis) {
+    return axis == 0u ? v.yzx : (axis == 1u ? v.zxy : v);
+}
+
+// Warped grid: writes every texel that the box lo..hi (swizzled grid coordinates: the pixel's
+// column over the plane's depth span) warps onto and whose share of the pixel's column the
+// triangle meets. Each texel is judged only within this pixel's column, as an even grid's
+// texel is judged by its own pixel: the pixels that tile a texel each test their share, so
+// the coverage is exact, and each writes only the texels it covers (judged whole, a texel
+// would take the albedo of every pixel around it).
+void write_warped(vec3 lo, vec3 hi, vec3 albedo, Material m) {
+    ivec3 a = ivec3(floor(to_voxel_space(voxel.origin_size.xyz + unswizzle(lo, in_axis) * voxel.origin_size.w) - 1e-4));
+    ivec3 b = ivec3(floor(to_voxel_space(voxel.origin_size.xyz + unswizzle(hi, in_axis) * voxel.origin_size.w) + 1e-4));
+    a = max(a, ivec3(0));
+    b = min(b, min(ivec3(voxel.dims.xyz) - 1, a + 7));
+    for (int z = a.z; z <= b.z; z++) {
+        for (int y = a.y; y <= b.y; y++) {
+            for (int x = a.x; x <= b.x; x++) {
+                vec3 c, h;
+                texel_box(ivec3(x, y, z), c, h);
+                c = swizzle(c, in_axis);
+                h = swizzle(h, in_axis);
+                vec2 from = max(c.xy - h.xy, lo.xy), to = min(c.xy + h.xy, hi.xy);
+                if (any(lessThanEqual(to, from))) continue;
+                c.xy = 0.5 * (from + to);
+                h.xy = 0.5 * (to - from);
+                if (triangle_box_overlap(in_tri[0] - c, in_tri[1] - c, in_tri[2] - c, h)) {
+                    write_voxel(ivec3(x, y, z), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
+                }
+            }
+        }
+    }
+}
+
 void main() {
     // Conservative coverage grows the triangle past its bounding box at acute corners.
     if (any(lessThanEqual(gl_FragCoord.xy, in_bounds.xy)) || any(greaterThanEqual(gl_FragCoord.xy, in_bounds.zw))) {
@@ -39,7 +77,21 @@ void main() {
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
     if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) == 0u) {
         float z = plane_depth(gl_FragCoord.xy / scale);
-        write_voxel(ivec3(unswizzle(vec3(xy, floor(z)), in_axis)), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
+        vec3 at = warp_on(voxel.warp) ? floor(swizzle(to_voxel_space(voxel.origin_size.xyz +
+                                              unswizzle(vec3(gl_FragCoord.xy / scale, z), in_axis) * voxel.origin_size.w), in_axis))
+                                      : vec3(xy, floor(z));
+        write_voxel(ivec3(unswizzle(at, in_axis)), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
+        return;
+    }
+    if (warp_on(voxel.warp)) {
+        // The pixel's box and the plane's depth over it (dominant axis: slopes are <= 1; a
+        // triangle too thin for its plane spans its whole depth range).
+        vec2 lo = floor(gl_FragCoord.xy) / scale, hi = lo + 1.0 / scale;
+        bool planeless = in_depth.zw == vec2(0.0) || any(greaterThan(abs(in_depth.zw), vec2(1.5)));
+        float zc = plane_depth(0.5 * (lo + hi)), reach = 0.5 / scale * (abs(in_depth.z) + abs(in_depth.w));
+        float z0 = planeless ? in_depth.x : max(zc - reach, in_depth.x);
+        float z1 = planeless ? in_depth.y : min(zc + reach, in_depth.y);
+        write_warped(vec3(lo, z0), vec3(hi, z1), albedo, m);
         return;
     }
     // The plane's depth over the whole voxel column cell (dominant axis: slopes are <= 1).

@@ -2,7 +2,8 @@
 // Rasterized voxelizer, geometry stage (Freed 2018 §4.1.1, Algorithm 1): projects each
 // triangle orthographically along the dominant axis of its face normal, computed from its
 // edges (vertex normals can cancel), onto an N x N (times the viewport scale) attachment-less
-// framebuffer. The fragment stage takes the voxel depth from the triangle's plane.
+// framebuffer. The fragment stage takes the voxel depth from the triangle's plane. It works in
+// the unwarped grid, where the triangle is flat; the fragment stage finds a warped grid's texels.
 //
 // With VOXEL_FLAG_CONSERVATIVE the projected triangle is grown so that every pixel it touches
 // gets a fragment (Hasselgren, Akenine-Moeller & Ohlsson 2005, GPU Gems 2 ch. 42; Crassin &
@@ -60,7 +61,7 @@ void emit(vec2 px, vec3 b, float scale, float res) {
 void main() {
     vec3 p[3];
     for (int i = 0; i < 3; i++) {
-        p[i] = to_voxel_space(in_world[i]);
+        p[i] = to_grid_space(in_world[i]);  // a warped grid's texels are found per fragment
         nrm[i] = in_normal[i];
         uv[i] = in_uv[i];
     }

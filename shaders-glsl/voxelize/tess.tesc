@@ -30,9 +30,11 @@ void main() {
     out_normal[gl_InvocationID] = in_normal[gl_InvocationID];
     out_uv[gl_InvocationID] = in_uv[gl_InvocationID];
     if (gl_InvocationID == 0) {
-        vec3 p0 = to_voxel_space(in_world[0]);
-        vec3 p1 = to_voxel_space(in_world[1]);
-        vec3 p2 = to_voxel_space(in_world[2]);
+        // In texels of the finest the grid has (a warped grid's are 1.5 - a/2 to a grid voxel).
+        float fine = 1.5 - 0.5 * min(voxel.warp.w, 1.0);
+        vec3 p0 = to_grid_space(in_world[0]) * fine;
+        vec3 p1 = to_grid_space(in_world[1]) * fine;
+        vec3 p2 = to_grid_space(in_world[2]) * fine;
         // Outer level i belongs to the edge opposite vertex i.
         gl_TessLevelOuter[0] = level(max3(abs(p2 - p1)));
         gl_TessLevelOuter[1] = level(max3(abs(p0 - p2)));

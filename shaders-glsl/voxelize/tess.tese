@@ -29,13 +29,15 @@ void main() {
     ivec3 own = ivec3(floor(to_voxel_space(world)));
     write_voxel(own, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
     if ((voxel.grid.y & VOXEL_FLAG_NEIGHBOURS) != 0u) {
-        vec3 p0 = to_voxel_space(in_world[0]), p1 = to_voxel_space(in_world[1]), p2 = to_voxel_space(in_world[2]);
+        // In the unwarped grid, each texel as its own box there (a warped one's is not a unit cube).
+        vec3 p0 = to_grid_space(in_world[0]), p1 = to_grid_space(in_world[1]), p2 = to_grid_space(in_world[2]);
         for (int i = 0; i < 27; i++) {
             ivec3 c = own + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;
             if (i == 13 || !in_grid(c)) continue;
-            vec3 centre = vec3(c) + 0.5;
+            vec3 centre, half_size;
+            texel_box(c, centre, half_size);
             if (imageLoad(voxel_albedo, stored_at(c)).r == 0u &&
-                triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, vec3(0.5))) {
+                triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, half_size)) {
                 write_voxel(c, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
             }
         }

@@ -169,6 +169,8 @@ pub struct AccuracyRow {
     pub resolution: u32,
     pub bounces: u32,
     pub frame_ms: f64,
+    /// The volume's memory (voxel textures, radiance, lists), MiB.
+    pub memory_mib: f64,
     pub flip: f32,
     /// FLIP of the direct-light-only frame against the same reference.
     pub flip_direct_only: f32,
@@ -188,11 +190,27 @@ pub struct AccuracyRow {
     pub height: u32,
 }
 
-/// A named change to the GI model.
+/// A named change to the GI model, or to how the volume spreads its voxels.
 #[derive(Clone)]
 pub struct Variant {
     pub name: String,
     pub gi: GiFile,
+    /// Warp the grid (`RenderOptions::warp`): the same voxels, finest at the camera.
+    pub warp: Option<f32>,
+}
+
+impl Variant {
+    /// The scene's own model on its own grid.
+    pub fn default_of(gi: &GiFile) -> Self {
+        Variant { name: "default".into(), gi: gi.clone(), warp: None }
+    }
+
+    /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
+    /// at the same memory.
+    pub fn warped(gi: &GiFile) -> Self {
+        let s = crate::voxel::warp::THESIS_END_SLOPE;
+        Variant { name: format!("warp function {s}"), gi: gi.clone(), warp: Some(s) }
+    }
 }
 
 fn scaled(img: &[Vec3], k: f32) -> Vec<Vec3> {
@@ -207,20 +225,20 @@ fn mean_lum(img: &[Vec3]) -> f32 {
     img.iter().map(|p| lum(*p)).sum::<f32>() / img.len().max(1) as f32
 }
 
-/// Renders `scene` with `options`: median frame GPU ms over `frames` after one warm-up, and the
-/// last frame's linear radiance and RGB8.
+/// Renders `scene` with `options`: median frame GPU ms over `frames` after one warm-up, the
+/// last frame's linear radiance and RGB8, and the volume's memory (bytes).
 pub fn render_timed(
     ctx: &Arc<Context>,
     scene: &Scene,
     options: RenderOptions,
     frames: u32,
-) -> Result<(f64, Vec<Vec3>, Vec<u8>)> {
+) -> Result<(f64, Vec<Vec3>, Vec<u8>, u64)> {
     let r = Renderer::new(ctx, scene.clone(), options)?;
     r.render()?;
     let runs: Vec<_> = (0..frames.max(1)).map(|_| r.render()).collect::<Result<_>>()?;
     let total = median(&runs).iter().find(|t| t.pass == "total").map(|t| t.ms).unwrap_or(0.0);
     let f = r.read_frame()?;
-    Ok((total, f.linear(), f.rgb8()))
+    Ok((total, f.linear(), f.rgb8(), r.memory().bytes))
 }
 
 /// The voxelizer the harness renders with: the rasterized path (its coverage is exact on these
@@ -240,8 +258,18 @@ pub fn measure(
 ) -> Result<AccuracyRow> {
     let mut scene = j.scene.clone();
     scene.settings.gi = variant.gi.clone();
-    let options = RenderOptions { method: harness_method(), resolution: Some(resolution), ..Default::default() };
-    let (ms, full, rgb) = render_timed(ctx, &scene, options, frames)?;
+    let mut options = RenderOptions {
+        method: harness_method(),
+        resolution: Some(resolution),
+        warp: variant.warp,
+        ..Default::default()
+    };
+    if variant.warp.is_some() {
+        // A warp that follows the camera gets dense storage by default; this camera stands
+        // still, and the brick pool the fitted grid gets here keeps the memory comparable.
+        options.storage = crate::voxel::bricks::Storage::Sparse;
+    }
+    let (ms, full, rgb, memory) = render_timed(ctx, &scene, options, frames)?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     let (flip, flip_map) = metrics::flip(&j.full_rgb, &rgb, w, h);
     let (flip_direct_only, _) = metrics::flip(&j.full_rgb, &direct.1, w, h);
@@ -279,6 +307,7 @@ pub fn measure(
         resolution,
         bounces: variant.gi.bounces,
         frame_ms: ms,
+        memory_mib: memory as f64 / (1u64 << 20) as f64,
         flip,
         flip_direct_only,
         mean_ratio: mean_lum(&full) / mean_lum(&j.full).max(1e-9),
@@ -300,7 +329,7 @@ pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(
         gi: false,
         ..Default::default()
     };
-    let (_, lin, rgb) = render_timed(ctx, &j.scene, options, 1)?;
+    let (_, lin, rgb, _) = render_timed(ctx, &j.scene, options, 1)?;
     Ok((lin, rgb))
 }
 
@@ -308,7 +337,7 @@ pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(
 /// (a staircase: every row differs from the one above by one choice), the cone sets on top of
 /// the default, and the default with each of its choices undone or changed.
 pub fn study_variants(default: &GiFile) -> Vec<Variant> {
-    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi };
+    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi, warp: None };
     // The step cap is no model choice: every variant gets the default's; nor are the lights
     // (area lights are chosen when the scene loads, and one direct frame serves all variants).
     let t =
@@ -364,16 +393,17 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
 /// Markdown tables of the rows: the summary per scene and variant, then each row's regions.
 pub fn summary(rows: &[AccuracyRow]) -> String {
     let mut s = String::from(
-        "| scene | variant | N | bounces | frame ms | FLIP | direct-only FLIP | FLIP / direct-only | mean / reference | reference noise |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        "| scene | variant | N | bounces | frame ms | memory MiB | FLIP | direct-only FLIP | FLIP / direct-only | mean / reference | reference noise |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows {
         s.push_str(&format!(
-            "| {} | {} | {} | {} | {:.1} | {:.3} | {:.3} | {:.0}% | {:.3} | {:.2}% |\n",
+            "| {} | {} | {} | {} | {:.1} | {:.1} | {:.3} | {:.3} | {:.0}% | {:.3} | {:.2}% |\n",
             r.scene,
             r.variant,
             r.resolution,
             r.bounces,
             r.frame_ms,
+            r.memory_mib,
             r.flip,
             r.flip_direct_only,
             100.0 * r.flip / r.flip_direct_only.max(1e-9),
@@ -415,8 +445,9 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
     let json =
         serde_json::to_string_pretty(rows).map_err(|e| Error::input(dir.join("accuracy.json"), e.to_string()))?;
     files.push(put("accuracy.json", &json)?);
-    let mut csv =
-        String::from("scene,variant,resolution,bounces,frame_ms,flip,flip_direct_only,mean_ratio,worst_region_ratio\n");
+    let mut csv = String::from(
+        "scene,variant,resolution,bounces,frame_ms,memory_mib,flip,flip_direct_only,mean_ratio,worst_region_ratio\n",
+    );
     for r in rows {
         let worst =
             r.regions
@@ -424,8 +455,17 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
                 .map(|g| g.ratio)
                 .fold(1.0f32, |w, x| if (x - 1.0).abs() > (w - 1.0).abs() { x } else { w });
         csv.push_str(&format!(
-            "{},\"{}\",{},{},{:.3},{:.5},{:.5},{:.4},{:.4}\n",
-            r.scene, r.variant, r.resolution, r.bounces, r.frame_ms, r.flip, r.flip_direct_only, r.mean_ratio, worst
+            "{},\"{}\",{},{},{:.3},{:.2},{:.5},{:.5},{:.4},{:.4}\n",
+            r.scene,
+            r.variant,
+            r.resolution,
+            r.bounces,
+            r.frame_ms,
+            r.memory_mib,
+            r.flip,
+            r.flip_direct_only,
+            r.mean_ratio,
+            worst
         ));
     }
     files.push(put("accuracy.csv", &csv)?);
@@ -444,6 +484,10 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
             .map_err(|source| Error::Image { path: p.clone(), source })?;
         files.push(p);
     }
-    files.extend(super::charts::draw_accuracy(dir, rows)?);
+    files.extend(super::charts::draw_accuracy(dir, rows, super::charts::Cost::Time)?);
+    // Grids that spread the same voxels differently (--layouts): FLIP over memory too.
+    if rows.iter().any(|r| r.variant.starts_with("warp")) {
+        files.extend(super::charts::draw_accuracy(dir, rows, super::charts::Cost::Memory)?);
+    }
     Ok(files)
 }

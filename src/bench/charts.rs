@@ -481,10 +481,23 @@ pub fn draw_named(dir: &Path, stem: &str, g: &Regime) -> Result<Vec<PathBuf>> {
     Ok(vec![path.with_extension("png"), path.with_extension("svg")])
 }
 
+/// What an accuracy chart's x axis shows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Cost {
+    /// Frame GPU time.
+    Time,
+    /// The volume's memory.
+    Memory,
+}
+
 /// The speed-against-accuracy chart of the GI study: one panel per scene, FLIP against the
-/// path-traced reference over frame GPU time, each point a variant and resolution, the Pareto
-/// front marked.
-fn accuracy_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, rows: &[AccuracyRow]) -> DrawResult<DB> {
+/// path-traced reference over frame GPU time (or the volume's memory), each point a variant and
+/// resolution, the Pareto front marked.
+fn accuracy_chart<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    rows: &[AccuracyRow],
+    cost: Cost,
+) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
     scenes.dedup();
@@ -494,7 +507,8 @@ fn accuracy_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, rows: &[Accu
     let panels = root.split_evenly((scenes.len().div_ceil(cols).max(1), cols));
     for (scene, area) in scenes.iter().zip(panels.iter()) {
         let mine: Vec<&AccuracyRow> = rows.iter().filter(|r| r.scene == *scene).collect();
-        let pts: Vec<(f64, f64)> = mine.iter().map(|r| (r.frame_ms, r.flip as f64)).collect();
+        let x = |r: &AccuracyRow| if cost == Cost::Time { r.frame_ms } else { r.memory_mib };
+        let pts: Vec<(f64, f64)> = mine.iter().map(|r| (x(r), r.flip as f64)).collect();
         let (ylo, yhi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
         let pad = ((yhi - ylo) * 0.1).max(1e-3);
         let mut chart = ChartBuilder::on(area)
@@ -503,7 +517,8 @@ fn accuracy_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, rows: &[Accu
             .x_label_area_size(40)
             .y_label_area_size(60)
             .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), (ylo - pad)..(yhi + pad))?;
-        chart.configure_mesh().x_desc("frame GPU ms (log)").y_desc("FLIP (lower is better)").draw()?;
+        let x_desc = if cost == Cost::Time { "frame GPU ms (log)" } else { "volume memory, MiB (log)" };
+        chart.configure_mesh().x_desc(x_desc).y_desc("FLIP (lower is better)").draw()?;
         let front = pareto(&pts, false);
         chart.draw_series(LineSeries::new(front.iter().map(|&i| pts[i]), BLACK.stroke_width(1)))?;
         chart.draw_series(mine.iter().zip(&pts).map(|(r, p)| {
@@ -516,10 +531,11 @@ fn accuracy_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, rows: &[Accu
     root.present()
 }
 
-/// Draws `accuracy.png` and `.svg` in `dir`.
-pub fn draw_accuracy(dir: &Path, rows: &[AccuracyRow]) -> Result<Vec<PathBuf>> {
+/// Draws `accuracy.png` and `.svg` in `dir` (FLIP over frame time), or with `Cost::Memory`
+/// `accuracy-memory.png` and `.svg` (FLIP over the volume's memory).
+pub fn draw_accuracy(dir: &Path, rows: &[AccuracyRow], cost: Cost) -> Result<Vec<PathBuf>> {
     ensure_font()?;
-    let path = dir.join("accuracy");
+    let path = dir.join(if cost == Cost::Time { "accuracy" } else { "accuracy-memory" });
     let err = |m: String| Error::input(&path, format!("drawing the chart: {m}"));
     let panels = {
         let mut s: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
@@ -528,9 +544,9 @@ pub fn draw_accuracy(dir: &Path, rows: &[AccuracyRow]) -> Result<Vec<PathBuf>> {
         s.len().max(1)
     };
     let size = (1400, 520 * panels.div_ceil(2) as u32);
-    accuracy_chart(BitMapBackend::new(&path.with_extension("png"), size).into_drawing_area(), rows)
+    accuracy_chart(BitMapBackend::new(&path.with_extension("png"), size).into_drawing_area(), rows, cost)
         .map_err(|e| err(e.to_string()))?;
-    accuracy_chart(SVGBackend::new(&path.with_extension("svg"), size).into_drawing_area(), rows)
+    accuracy_chart(SVGBackend::new(&path.with_extension("svg"), size).into_drawing_area(), rows, cost)
         .map_err(|e| err(e.to_string()))?;
     Ok(vec![path.with_extension("png"), path.with_extension("svg")])
 }

@@ -58,7 +58,7 @@ fn recall(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: Voxel
 }
 
 fn unit_grid(n: u32) -> VoxelGrid {
-    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n) }
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default() }
 }
 
 fn tess(subdivide: bool) -> VoxelizeMethod {
@@ -337,11 +337,14 @@ pub enum Motion {
 /// diffuse cones at one pixel in `gi_scale`², accumulated over frames or not. With a moving
 /// camera the change includes the view's own; full-resolution tracing (scale 1) is the bar.
 /// Accumulation first gets gi_scale² still frames: it converges (once) before it is judged.
+/// With `warp` the grid is warped (Freed 2018 §4.6.1) with that end slope, its finest texels
+/// following the moving point or camera.
 pub fn flicker(
     ctx: &Arc<Context>,
     motion: Motion,
     temporal: f32,
     (gi_scale, gi_accumulate): (u32, bool),
+    warp: Option<f32>,
     frames: u32,
 ) -> Result<Vec<(f64, f64)>> {
     let mut scene = Scene::embedded_default()?;
@@ -359,6 +362,7 @@ pub fn flicker(
         },
         gi_scale,
         gi_accumulate,
+        warp,
         ..Default::default()
     };
     let mut r = Renderer::new(ctx, scene, o)?;
@@ -381,6 +385,8 @@ pub fn flicker(
             Motion::Camera => {
                 let c = &mut r.scene.camera;
                 c.eye = c.target + turn * (c.eye - c.target);
+                let eye = c.eye;
+                r.follow(eye)?; // a warp's finest texels follow the camera, as in the viewer
             }
         }
         r.render()?;
@@ -396,25 +402,28 @@ pub fn flicker(
 /// Regime 4: temporal flicker.
 pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
     let full = (1, false);
+    let warp = Some(crate::voxel::warp::THESIS_END_SLOPE);
     let configs = [
-        ("sliding volume", Motion::Volume { snap: false }, 1.0, full),
-        ("sliding volume, snapped", Motion::Volume { snap: true }, 1.0, full),
-        ("sliding volume, temporal 0.2 (reprojected)", Motion::Volume { snap: false }, 0.2, full),
-        ("sliding volume, snapped, temporal 0.2", Motion::Volume { snap: true }, 0.2, full),
-        ("turning light", Motion::Light, 1.0, full),
-        ("turning light, temporal 0.2", Motion::Light, 0.2, full),
-        ("turning light, GI scale 2 accumulated", Motion::Light, 1.0, (2, true)),
-        ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true)),
-        ("orbiting camera", Motion::Camera, 1.0, full),
-        ("orbiting camera, GI scale 2", Motion::Camera, 1.0, (2, false)),
-        ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true)),
-        ("orbiting camera, GI scale 4", Motion::Camera, 1.0, (4, false)),
-        ("orbiting camera, GI scale 4 accumulated", Motion::Camera, 1.0, (4, true)),
+        ("sliding volume", Motion::Volume { snap: false }, 1.0, full, None),
+        ("sliding volume, snapped", Motion::Volume { snap: true }, 1.0, full, None),
+        ("sliding volume, snapped, warped", Motion::Volume { snap: true }, 1.0, full, warp),
+        ("sliding volume, temporal 0.2 (reprojected)", Motion::Volume { snap: false }, 0.2, full, None),
+        ("sliding volume, snapped, temporal 0.2", Motion::Volume { snap: true }, 0.2, full, None),
+        ("turning light", Motion::Light, 1.0, full, None),
+        ("turning light, temporal 0.2", Motion::Light, 0.2, full, None),
+        ("turning light, GI scale 2 accumulated", Motion::Light, 1.0, (2, true), None),
+        ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true), None),
+        ("orbiting camera", Motion::Camera, 1.0, full, None),
+        ("orbiting camera, warped", Motion::Camera, 1.0, full, warp),
+        ("orbiting camera, GI scale 2", Motion::Camera, 1.0, (2, false), None),
+        ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true), None),
+        ("orbiting camera, GI scale 4", Motion::Camera, 1.0, (4, false), None),
+        ("orbiting camera, GI scale 4 accumulated", Motion::Camera, 1.0, (4, true), None),
     ];
     let series: Vec<Series> = configs
         .iter()
-        .map(|(label, motion, t, gi)| {
-            Ok(Series { label: label.to_string(), points: flicker(ctx, *motion, *t, *gi, frames)? })
+        .map(|(label, motion, t, gi, warp)| {
+            Ok(Series { label: label.to_string(), points: flicker(ctx, *motion, *t, *gi, *warp, frames)? })
         })
         .collect::<Result<_>>()?;
     Ok(Regime {

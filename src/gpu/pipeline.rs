@@ -9,20 +9,28 @@ use ash::vk;
 use super::Context;
 use crate::error::{Result, VkContext};
 
-/// One shader stage: SPIR-V bytes plus specialization constants (constant_id 0, 1, ...).
+/// One shader stage: SPIR-V bytes plus specialization constants (constant_id 0, 1, ...), and
+/// WARPED (constant WARP_CONSTANT_ID, common/warp.glsl: whether the grid is warped; off, the
+/// warp's code is compiled out of every shader that includes it).
 #[derive(Clone, Copy)]
 pub struct Stage<'a> {
     pub stage: vk::ShaderStageFlags,
     pub spirv: &'a [u8],
     pub spec: &'a [u32],
+    pub warped: bool,
 }
 
 impl<'a> Stage<'a> {
     pub fn new(stage: vk::ShaderStageFlags, spirv: &'a [u8]) -> Self {
-        Stage { stage, spirv, spec: &[] }
+        Stage { stage, spirv, spec: &[], warped: false }
     }
     pub fn spec(mut self, spec: &'a [u32]) -> Self {
         self.spec = spec;
+        self
+    }
+    /// For a warped grid (`voxel::warp`).
+    pub fn warped(mut self, warped: bool) -> Self {
+        self.warped = warped;
         self
     }
 }
@@ -59,11 +67,20 @@ struct Spec {
 }
 
 impl Spec {
-    fn new(values: &[u32]) -> Self {
-        let entries = (0..values.len() as u32)
+    fn new(values: &[u32], warped: bool) -> Self {
+        assert!(values.len() as u32 <= crate::config::WARP_CONSTANT_ID, "constant ids collide with WARPED");
+        let mut entries: Vec<_> = (0..values.len() as u32)
             .map(|i| vk::SpecializationMapEntry { constant_id: i, offset: i * 4, size: 4 })
             .collect();
-        Spec { entries, data: bytemuck::cast_slice(values).to_vec() }
+        let n = values.len() as u32;
+        entries.push(vk::SpecializationMapEntry {
+            constant_id: crate::config::WARP_CONSTANT_ID,
+            offset: n * 4,
+            size: 4,
+        });
+        let mut data: Vec<u8> = bytemuck::cast_slice(values).to_vec();
+        data.extend_from_slice(&(warped as u32).to_ne_bytes());
+        Spec { entries, data }
     }
     fn info(&self) -> vk::SpecializationInfo<'_> {
         vk::SpecializationInfo::default().map_entries(&self.entries).data(&self.data)
@@ -153,7 +170,7 @@ impl Pipeline {
         push_constant_size: u32,
     ) -> Result<Self> {
         let module = Module::new(ctx, stage.spirv)?;
-        let spec = Spec::new(stage.spec);
+        let spec = Spec::new(stage.spec, stage.warped);
         let spec_info = spec.info();
         let layout = create_layout(ctx, set_layouts, push_constant_size)?;
         let info = vk::ComputePipelineCreateInfo::default()
@@ -174,7 +191,7 @@ impl Pipeline {
 
     pub fn graphics(ctx: &Arc<Context>, desc: &GraphicsDesc) -> Result<Self> {
         let modules: Vec<Module> = desc.stages.iter().map(|s| Module::new(ctx, s.spirv)).collect::<Result<_>>()?;
-        let specs: Vec<Spec> = desc.stages.iter().map(|s| Spec::new(s.spec)).collect();
+        let specs: Vec<Spec> = desc.stages.iter().map(|s| Spec::new(s.spec, s.warped)).collect();
         let spec_infos: Vec<_> = specs.iter().map(|s| s.info()).collect();
         let stages: Vec<_> = desc
             .stages

@@ -6,17 +6,64 @@
 //! it does require one of the two: each such cell gives a required *pair*.
 //! Recall = share of required voxels and pairs the GPU filled; precision = share of GPU voxels
 //! that are allowed; IoU = |GPU ∩ allowed| / |GPU ∪ required|.
+//!
+//! A warped grid (Freed 2018 §4.6.1) warps each axis on its own, so its voxels are still boxes,
+//! each of its own size: the reference finds their faces by inverting the thesis' cubic by
+//! bisection (its own code, not `voxel::warp`'s), and `eps` is then a fraction of each voxel.
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 /// The grid the reference works on: `dims` cubes of edge `voxel` along x, y and z from `origin`
-/// (world units).
+/// (world units), or with `warp`, boxes whose faces the warp places.
 #[derive(Clone, Copy, Debug)]
 pub struct RefGrid {
     pub origin: Vec3,
     pub voxel: f32,
     pub dims: [u32; 3],
+    pub warp: Option<RefWarp>,
+}
+
+/// The thesis' warp (§4.6.1) with its peak at grid fraction `centre` and slope `end_slope` at
+/// the faces: each side of the centre is the half of w(x) = αx + (3 − 3α)x² + (2α − 2)x³ below
+/// x = 1/2, scaled to that side's length.
+#[derive(Clone, Copy, Debug)]
+pub struct RefWarp {
+    pub centre: [f64; 3],
+    pub end_slope: f64,
+}
+
+impl RefWarp {
+    fn thesis(&self, x: f64) -> f64 {
+        let a = self.end_slope;
+        a * x + (3.0 - 3.0 * a) * x * x + (2.0 * a - 2.0) * x * x * x
+    }
+
+    /// The texture fraction of grid fraction `x` in [0, 1] along `axis`.
+    fn forward(&self, x: f64, axis: usize) -> f64 {
+        let c = self.centre[axis];
+        if x < c {
+            2.0 * c * self.thesis(x / (2.0 * c))
+        } else if x >= 1.0 {
+            1.0
+        } else {
+            1.0 - 2.0 * (1.0 - c) * self.thesis((1.0 - x) / (2.0 * (1.0 - c)))
+        }
+    }
+
+    /// The grid fraction where texture fraction `t` begins, by bisection.
+    fn face(&self, t: f64, axis: usize) -> f64 {
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..64 {
+            let mid = 0.5 * (lo + hi);
+            if self.forward(mid, axis) < t {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
 }
 
 /// Separating-axis test of a triangle against the box centred at the origin with half-size `h`.
@@ -64,18 +111,48 @@ pub struct Coverage {
     pub pairs: Vec<(usize, usize)>,
 }
 
-/// If the triangle (voxel units) lies in a plane `axis = k` for an integer k, returns (axis, k).
-fn boundary_plane(p: &[DVec3; 3], eps: f64) -> Option<(usize, i64)> {
+/// The face of `faces` nearest `x`.
+fn nearest_face(faces: &[f64], x: f64) -> usize {
+    let i = faces.partition_point(|&f| f < x).min(faces.len() - 1);
+    if i > 0 && x - faces[i - 1] < faces[i] - x {
+        i - 1
+    } else {
+        i
+    }
+}
+
+/// If the triangle (voxel units) lies in the plane of face k along `axis` (within `eps` of the
+/// voxels there), returns (axis, k).
+fn boundary_plane(p: &[DVec3; 3], faces: &[Vec<f64>; 3], eps: f64) -> Option<(usize, i64)> {
     (0..3).find_map(|a| {
-        let k = p[0][a].round();
-        p.iter().all(|v| (v[a] - k).abs() <= eps * 0.5).then_some((a, k as i64))
+        let f = &faces[a];
+        let k = nearest_face(f, p[0][a]);
+        let size = 0.5 * (f[(k + 1).min(f.len() - 1)] - f[k.saturating_sub(1)]);
+        p.iter().all(|v| (v[a] - f[k]).abs() <= eps * 0.5 * size).then_some((a, k as i64))
     })
 }
 
 impl RefGrid {
     /// The same grid as a renderer's (its origin, voxel size and dims, read as plain numbers).
     pub fn matching(grid: &crate::voxel::VoxelGrid) -> Self {
-        RefGrid { origin: grid.origin, voxel: grid.voxel, dims: grid.dims.into() }
+        let w = grid.warp;
+        let warp =
+            (w.end_slope < 1.0).then(|| RefWarp { centre: w.centre.as_dvec3().into(), end_slope: w.end_slope as f64 });
+        RefGrid { origin: grid.origin, voxel: grid.voxel, dims: grid.dims.into(), warp }
+    }
+
+    /// The faces of the voxels along each axis, in voxels of the unwarped grid (0, 1, .., n
+    /// unwarped).
+    pub fn faces(&self) -> [Vec<f64>; 3] {
+        std::array::from_fn(|a| {
+            let n = self.dims[a];
+            (0..=n)
+                .map(|i| match self.warp {
+                    Some(w) => w.face(i as f64 / n as f64, a) * n as f64,
+                    None => i as f64,
+                })
+                .collect()
+        })
     }
 
     pub fn index(&self, x: u32, y: u32, z: u32) -> usize {
@@ -87,6 +164,20 @@ impl RefGrid {
     pub fn coverage(&self, triangles: &[[Vec3; 3]], eps: f64) -> Coverage {
         let n = self.dims.map(|d| d as i64);
         let len = self.dims.iter().map(|&d| d as usize).product();
+        let faces = self.faces();
+        // The voxels whose extent along `a` reaches [lo, hi].
+        let span = |lo: f64, hi: f64, a: usize| {
+            let f = &faces[a];
+            let first = f.partition_point(|&x| x < lo) as i64 - 1;
+            let last = f.partition_point(|&x| x <= hi) as i64 - 1;
+            (first.clamp(0, n[a] - 1), last.clamp(0, n[a] - 1))
+        };
+        // Voxel (x, y, z): its centre and half size.
+        let cell = |x: i64, y: i64, z: i64| {
+            let lo = DVec3::new(faces[0][x as usize], faces[1][y as usize], faces[2][z as usize]);
+            let hi = DVec3::new(faces[0][x as usize + 1], faces[1][y as usize + 1], faces[2][z as usize + 1]);
+            (0.5 * (lo + hi), 0.5 * (hi - lo))
+        };
         // Per triangle: (voxel, required) hits and boundary-face pairs.
         type Hits = (Vec<(usize, bool)>, Vec<(usize, usize)>);
         let per_triangle: Vec<Hits> = triangles
@@ -97,33 +188,34 @@ impl RefGrid {
                 if p.iter().any(|v| !v.is_finite()) {
                     return (Vec::new(), Vec::new());
                 }
-                let lo = p[0].min(p[1]).min(p[2]) - eps;
-                let hi = p[0].max(p[1]).max(p[2]) + eps;
-                let r = |f: f64, a: usize| (f.floor() as i64).clamp(0, n[a] - 1);
-                let (x0, y0, z0) = (r(lo.x, 0), r(lo.y, 1), r(lo.z, 2));
-                let (x1, y1, z1) = (r(hi.x, 0), r(hi.y, 1), r(hi.z, 2));
+                // Grown by eps of the largest voxel (a warped grid's are up to 1/0.05 wide).
+                let lo = p[0].min(p[1]).min(p[2]) - 20.0 * eps;
+                let hi = p[0].max(p[1]).max(p[2]) + 20.0 * eps;
                 if (0..3).any(|a| hi[a] < 0.0 || lo[a] > n[a] as f64) {
                     return (Vec::new(), Vec::new());
                 }
-                let plane = boundary_plane(&p, eps);
+                let s = |a: usize| span(lo[a], hi[a], a);
+                let ((x0, x1), (y0, y1), (z0, z1)) = (s(0), s(1), s(2));
+                let plane = boundary_plane(&p, &faces, eps);
                 let mut pairs = Vec::new();
                 let normal = (p[1] - p[0]).cross(p[2] - p[0]);
                 let mut out = Vec::new();
                 for z in z0..=z1 {
                     for y in y0..=y1 {
                         for x in x0..=x1 {
-                            let c = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.5);
+                            // eps is of the voxel's own size (a voxel of an unwarped grid is 1).
+                            let (c, half) = cell(x, y, z);
                             // Cheap plane rejection before the full test.
-                            let reach = 0.5 + eps;
-                            let rn = reach * (normal.x.abs() + normal.y.abs() + normal.z.abs());
+                            let reach = half * (1.0 + 2.0 * eps);
+                            let rn = reach.x * normal.x.abs() + reach.y * normal.y.abs() + reach.z * normal.z.abs();
                             if normal.dot(p[0] - c).abs() > rn {
                                 continue;
                             }
                             let v = p.map(|q| q - c);
-                            if !triangle_box_overlap(v, DVec3::splat(0.5 + eps)) {
+                            if !triangle_box_overlap(v, reach) {
                                 continue;
                             }
-                            let required = triangle_box_overlap(v, DVec3::splat(0.5 - eps));
+                            let required = triangle_box_overlap(v, half * (1.0 - 2.0 * eps));
                             let here = self.index(x as u32, y as u32, z as u32);
                             out.push((here, required));
                             // The face lies on this voxel's lower face: pair it with the voxel below,
@@ -131,10 +223,10 @@ impl RefGrid {
                             if let Some((a, k)) = plane {
                                 let c = [x, y, z];
                                 if c[a] == k && k > 0 {
-                                    let mut h = DVec3::splat(0.5 - eps);
-                                    h[a] = eps;
-                                    let mut centre = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.5);
-                                    centre[a] = k as f64;
+                                    let (mut centre, mut h) = cell(x, y, z);
+                                    h *= 1.0 - 2.0 * eps;
+                                    h[a] = 2.0 * eps * half[a];
+                                    centre[a] = faces[a][k as usize];
                                     if triangle_box_overlap(p.map(|q| q - centre), h) {
                                         let mut below = c;
                                         below[a] -= 1;
@@ -208,7 +300,7 @@ mod tests {
     use super::*;
 
     fn grid(n: u32) -> RefGrid {
-        RefGrid { origin: Vec3::ZERO, voxel: 1.0, dims: [n; 3] }
+        RefGrid { origin: Vec3::ZERO, voxel: 1.0, dims: [n; 3], warp: None }
     }
 
     #[test]

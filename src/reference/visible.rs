@@ -20,12 +20,17 @@ impl RefGrid {
         let mut pairs = Vec::new();
         let bvh = Bvh::new(triangles.to_vec());
         let n = DVec3::from(self.dims.map(|d| d as f64));
+        // The voxel that grid coordinate `x` along `a` lies in (a warped grid's by its faces).
+        let faces = self.faces();
+        let cell = |v: DVec3| {
+            DVec3::from(std::array::from_fn::<f64, 3, _>(|a| faces[a].partition_point(|&f| f <= v[a]) as f64 - 1.0))
+        };
         for y in 0..camera.height {
             for x in 0..camera.width {
                 let (o, d) = camera.ray(x as f32, y as f32);
                 let Some(hit) = bvh.intersect(o, d, 0.0, f32::INFINITY, false) else { continue };
                 let q = ((o + d * hit.t - self.origin) / self.voxel).as_dvec3();
-                let (lo, hi) = ((q - eps).floor(), (q + eps).floor());
+                let (lo, hi) = (cell(q - eps), cell(q + eps));
                 if lo.cmplt(DVec3::ZERO).any() || hi.cmpge(n).any() {
                     continue;
                 }

@@ -49,7 +49,9 @@ impl BouncePass {
         let pipeline = Pipeline::compute(
             ctx,
             "bounce",
-            Stage::new(c, shaders::GI_BOUNCE_COMP).spec(&voxels.bricks.spec(anisotropic as u32)),
+            Stage::new(c, shaders::GI_BOUNCE_COMP)
+                .spec(&voxels.bricks.spec(anisotropic as u32))
+                .warped(voxels.grid.is_warped()),
             &[scene.set.layout, set.layout],
             0,
         )?;

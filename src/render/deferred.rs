@@ -105,6 +105,7 @@ impl DeferredShadePass {
         gi_scale: u32,
         accumulate: bool,
         reduced_specular: bool,
+        warped: bool,
     ) -> Result<Self> {
         if !matches!(gi_scale, 1 | 2 | 4) {
             return Err(crate::Error::param("gi-scale", format!("must be 1, 2 or 4, got {gi_scale}")));
@@ -214,7 +215,13 @@ impl DeferredShadePass {
         let layouts = [scene.set.layout, scene.material_sets.layout, set.layout];
         let pipeline = |name: &str, pass: u32| {
             let spec = [aniso, sparse, resident, gi_scale, pass, accumulate as u32, reduced_specular as u32];
-            Pipeline::compute(ctx, name, Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&spec), &layouts, 0)
+            Pipeline::compute(
+                ctx,
+                name,
+                Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&spec).warped(warped),
+                &layouts,
+                0,
+            )
         };
         let shade_pipeline = pipeline("deferred shade", 0)?;
         let trace_pipeline = (gi_scale > 1).then(|| pipeline("diffuse cones (reduced)", 1)).transpose()?;

@@ -22,6 +22,9 @@ pub enum View {
     Voxels,
     /// The filtered radiance volume at one mip level.
     Radiance(u32),
+    /// The texel size the cones sample at each surface, against an even grid's voxel (a warped
+    /// grid, Freed 2018 Figure 5.7): green even, blue finer, red coarser.
+    Texels,
 }
 
 impl std::str::FromStr for View {
@@ -35,11 +38,12 @@ impl std::str::FromStr for View {
             "specular" => View::Specular,
             "ao" => View::Ao,
             "voxels" => View::Voxels,
+            "texels" => View::Texels,
             _ => match s.strip_prefix("radiance:").map(str::parse::<u32>) {
                 Some(Ok(level)) => View::Radiance(level),
                 _ => {
                     return Err(format!(
-                        "unknown view '{s}' (full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL)"
+                        "unknown view '{s}' (full|direct|indirect|diffuse|specular|ao|voxels|texels|radiance:LEVEL)"
                     ))
                 }
             },
@@ -58,6 +62,7 @@ impl View {
             View::Ao => config::VIEW_AO,
             View::Voxels => config::VIEW_VOXELS,
             View::Radiance(_) => config::VIEW_RADIANCE,
+            View::Texels => config::VIEW_TEXELS,
         }
     }
     /// Views drawn by marching the voxel volume instead of shading the surfaces.
@@ -66,7 +71,7 @@ impl View {
     }
     /// Views already in [0, 1] that skip the c/(c+1) tone curve.
     pub fn is_raw(self) -> bool {
-        matches!(self, View::Ao | View::Voxels)
+        matches!(self, View::Ao | View::Voxels | View::Texels)
     }
 }
 
@@ -265,6 +270,7 @@ impl FrameUniforms {
             light_layers,
             previous_view_proj: f.previous_view_proj.unwrap_or(view_proj),
             gi_jitter: f.gi_jitter,
+            voxel_warp: f.grid.warp.gpu(),
         }
     }
 }

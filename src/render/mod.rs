@@ -150,6 +150,9 @@ pub struct RenderOptions {
     pub tracing: Tracing,
     /// A volume around a moving point; `None`: fitted to the scene.
     pub follow: Option<Follow>,
+    /// Warp the grid by the thesis' function (Freed 2018 §4.6.1), its finest texels at the
+    /// camera, with this slope at the grid's faces (`voxel::warp`); `None`: even texels.
+    pub warp: Option<f32>,
     /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
     pub inject_texels: f32,
     /// Which texels the passes over the volume visit.
@@ -199,6 +202,7 @@ impl Default for RenderOptions {
             gi: true,
             tracing: Tracing::default(),
             follow: None,
+            warp: None,
             inject_texels: crate::config::INJECT_TEXELS_PER_VOXEL,
             work: Work::default(),
             storage: Storage::default(),
@@ -297,6 +301,17 @@ impl Renderer {
             (Some(f), None) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
             (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
         };
+        let grid = match options.warp {
+            Some(end_slope) => grid.warped(scene.camera.eye, end_slope)?,
+            None => grid,
+        };
+        if options.warp.is_some() && scene.settings.gi.temporal < 1.0 {
+            // The history is kept texel by texel: a warp that follows the camera moves every texel.
+            return Err(crate::Error::param(
+                "temporal",
+                "temporal filtering of a warped volume is not supported: give --temporal 1",
+            ));
+        }
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
         // Light lives in occupied voxels only: a voxel the temporal blend would leave lit after
@@ -305,7 +320,7 @@ impl Renderer {
         let request = crate::voxel::bricks::StorageRequest {
             storage: options.storage,
             bricks: options.bricks,
-            moving: options.follow.is_some(),
+            moving: options.follow.is_some() || options.warp.is_some(),
         };
         let sparse = request.resolve(ctx) == Storage::Sparse;
         if sparse && options.follow.is_some() && scene.settings.gi.temporal < 1.0 {
@@ -355,7 +370,8 @@ impl Renderer {
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, occupied, aniso))
             .transpose()?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
-        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso)?;
+        let warped = voxels.grid.is_warped();
+        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso, warped)?;
         let deferred = match options.tracing {
             Tracing::Deferred => {
                 let (s, acc) = (options.gi_scale, options.gi_accumulate);
@@ -370,6 +386,7 @@ impl Renderer {
                     s,
                     acc,
                     options.reduced_specular,
+                    warped,
                 )?)
             }
             Tracing::Forward if options.gi_scale != 1 || options.gi_accumulate => {
@@ -563,10 +580,15 @@ impl Renderer {
         self.timer.read_settled()
     }
 
-    /// Centres a following volume on `anchor` (no effect on a fitted volume).
+    /// Centres a following volume on `anchor`, and a warped grid's finest texels (no effect on a
+    /// fitted, even grid).
     pub fn follow(&mut self, anchor: glam::Vec3) -> Result<()> {
+        let mut grid = self.voxels.grid;
         if let Some(f) = self.options.follow {
-            let grid = VoxelGrid::around(anchor, f.extent, self.voxels.grid.longest(), f.snap)?;
+            grid = VoxelGrid { warp: grid.warp, ..VoxelGrid::around(anchor, f.extent, grid.longest(), f.snap)? };
+        }
+        grid = grid.refocused(anchor)?;
+        if grid != self.voxels.grid {
             self.voxels.grid = grid;
             self.voxelizer.set_grid(&grid);
         }
@@ -593,6 +615,7 @@ impl Renderer {
                 self.options.gi_scale,
                 self.options.gi_accumulate,
                 self.options.reduced_specular,
+                self.voxels.grid.is_warped(),
             )?),
             Tracing::Forward => None,
         };

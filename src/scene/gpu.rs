@@ -55,6 +55,8 @@ pub struct FrameUniforms {
     /// xy: the pixel of each GI-scale block the diffuse cones trace this frame; z: a history to
     /// accumulate with (1) or none (0) (render::deferred).
     pub gi_jitter: Vec4,
+    /// The grid's warp (`voxel::warp::Warp::gpu`; w = 1: none).
+    pub voxel_warp: Vec4,
 }
 
 /// One light as the shaders read it (`LightData` in common/frame.glsl).

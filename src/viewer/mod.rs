@@ -31,7 +31,8 @@ vct viewer keys:
   O              toggle fly / orbit around the scene centre
   arrow keys     swing the light's direction (the GI follows)
   V              switch voxelizer (rasterized / tessellation / points)
-  C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, radiance:0..3
+  X              warp the voxels, finest at the camera (Freed 2018 §4.6.1) on / off
+  C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, texels, radiance:0..3
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
   R              diffuse cones at one pixel in 1 / 4 / 16 (GI scale 1, 2, 4)
@@ -87,7 +88,7 @@ pub fn resident_bytes() -> u64 {
 /// `make test` on frames between the same switches.)
 pub const SOAK_CYCLE: u32 = 60;
 
-const VIEWS: [View; 11] = [
+const VIEWS: [View; 12] = [
     View::Full,
     View::Direct,
     View::Indirect,
@@ -95,6 +96,7 @@ const VIEWS: [View; 11] = [
     View::Specular,
     View::Ao,
     View::Voxels,
+    View::Texels,
     View::Radiance(0),
     View::Radiance(1),
     View::Radiance(2),
@@ -151,11 +153,15 @@ fn overlay_lines(r: &Running) -> Vec<String> {
     let mut lines = vec![
         format!("vct  {:.1} fps  {}x{}", r.fps, renderer.targets.width, renderer.targets.height),
         format!(
-            "voxelizer {}  grid {}x{}x{}  storage {}",
+            "voxelizer {}  grid {}x{}x{}{}  storage {}",
             o.method.label(),
             grid.dims.x,
             grid.dims.y,
             grid.dims.z,
+            match o.warp {
+                Some(s) => format!(" warped ({s})"),
+                None => String::new(),
+            },
             renderer.voxels.bricks.storage.label()
         ),
         format!(
@@ -322,6 +328,18 @@ impl App {
                 println!("voxelizer: {}", options.method.label());
                 Self::rebuild(r, options)?;
             }
+            KeyCode::KeyX => {
+                options.warp = match options.warp {
+                    Some(_) => None,
+                    None => Some(crate::voxel::warp::THESIS_END_SLOPE),
+                };
+                if options.warp.is_some() && r.renderer.scene.settings.gi.temporal < 1.0 {
+                    println!("warp: needs temporal filtering off (T)");
+                    return Ok(());
+                }
+                println!("warp: {}", if options.warp.is_some() { "function (finest at the camera)" } else { "none" });
+                Self::rebuild(r, options)?;
+            }
             KeyCode::Equal | KeyCode::NumpadAdd | KeyCode::Minus | KeyCode::NumpadSubtract => {
                 let now = r.renderer.voxels.grid.longest();
                 let up = matches!(code, KeyCode::Equal | KeyCode::NumpadAdd);
@@ -367,6 +385,9 @@ impl App {
             KeyCode::KeyG => {
                 r.renderer.options.gi = !options.gi;
                 println!("global illumination: {}", if r.renderer.options.gi { "on" } else { "off" });
+            }
+            KeyCode::KeyT if options.warp.is_some() && r.renderer.scene.settings.gi.temporal >= 1.0 => {
+                println!("temporal filter: a warped volume keeps no history (X turns the warp off)");
             }
             KeyCode::KeyT => {
                 let gi = &mut r.renderer.scene.settings.gi;

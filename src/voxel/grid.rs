@@ -12,6 +12,7 @@
 
 use glam::{UVec3, Vec3};
 
+use super::warp::Warp;
 use crate::error::{Error, Result};
 use crate::scene::Aabb;
 
@@ -26,6 +27,8 @@ pub struct VoxelGrid {
     pub voxel: f32,
     /// Voxels along x, y and z (each a power of two in MIN_RESOLUTION..=MAX_RESOLUTION).
     pub dims: UVec3,
+    /// How the texels spread over the box (`Warp::NONE`: evenly, `voxel` wide each).
+    pub warp: Warp,
 }
 
 fn check_axis(name: &'static str, n: u32) -> Result<()> {
@@ -73,7 +76,7 @@ impl VoxelGrid {
     }
 
     fn centred(bounds: &Aabb, voxel: f32, dims: UVec3) -> Self {
-        VoxelGrid { origin: bounds.center() - dims.as_vec3() * voxel * 0.5, voxel, dims }
+        VoxelGrid { origin: bounds.center() - dims.as_vec3() * voxel * 0.5, voxel, dims, warp: Warp::NONE }
     }
 
     /// `dims` when given, else the fitted grid with `longest` voxels along the longest axis.
@@ -97,7 +100,45 @@ impl VoxelGrid {
         if snap {
             origin = (origin / voxel).floor() * voxel;
         }
-        Ok(VoxelGrid { origin, voxel, dims: UVec3::splat(resolution) })
+        Ok(VoxelGrid { origin, voxel, dims: UVec3::splat(resolution), warp: Warp::NONE })
+    }
+
+    /// The grid warped by the thesis' function (Freed 2018 §4.6.1) with its finest texels at
+    /// `focus` (world; clamped into the box) and slope `end_slope` at the faces.
+    pub fn warped(self, focus: Vec3, end_slope: f32) -> Result<Self> {
+        let centre = (focus - self.origin) / (self.dims.as_vec3() * self.voxel);
+        Ok(VoxelGrid { warp: Warp::function(centre, end_slope)?, ..self })
+    }
+
+    /// Whether the texels spread unevenly (shaders built for the grid then keep the warp's code).
+    pub fn is_warped(&self) -> bool {
+        !self.warp.is_none()
+    }
+
+    /// The same warp with its finest texels moved to `focus` (world).
+    pub fn refocused(self, focus: Vec3) -> Result<Self> {
+        if self.warp.is_none() {
+            return Ok(self);
+        }
+        self.warped(focus, self.warp.end_slope)
+    }
+
+    /// Texel coordinates of world point `p` (texel v spans [v, v + 1)).
+    pub fn texel_of(&self, p: Vec3) -> glam::DVec3 {
+        let x = ((p - self.origin) / (self.dims.as_vec3() * self.voxel)).as_dvec3();
+        let n = self.dims.as_dvec3();
+        glam::DVec3::new(self.warp.forward(x.x, 0), self.warp.forward(x.y, 1), self.warp.forward(x.z, 2)) * n
+    }
+
+    /// The world box of texel `v`.
+    pub fn texel_bounds(&self, v: UVec3) -> Aabb {
+        let n = self.dims.as_dvec3();
+        let size = (self.dims.as_vec3() * self.voxel).as_dvec3();
+        let at = |t: glam::DVec3| {
+            let x = glam::DVec3::new(self.warp.inverse(t.x, 0), self.warp.inverse(t.y, 1), self.warp.inverse(t.z, 2));
+            (self.origin.as_dvec3() + x * size).as_vec3()
+        };
+        Aabb { min: at(v.as_dvec3() / n), max: at((v + 1).as_dvec3() / n) }
     }
 
     /// Voxels along the longest axis (the `--res` the grid answers to).

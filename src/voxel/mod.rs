@@ -13,6 +13,7 @@ pub mod raster;
 pub mod subdivide;
 pub mod tess;
 pub mod volume;
+pub mod warp;
 
 use std::sync::Arc;
 
@@ -163,6 +164,8 @@ pub struct VoxelParams {
     pub dims: [u32; 4],
     /// World to clip space of the view the point voxelizer refines (points::Refine).
     pub camera: [[f32; 4]; 4],
+    /// The grid's warp (`warp::Warp::gpu`).
+    pub warp: [f32; 4],
 }
 
 /// A voxelizer's parameters and the uniform buffer that holds them.
@@ -172,10 +175,12 @@ pub struct ParamsUbo {
 }
 
 impl ParamsUbo {
-    /// Moves the grid (the volume follows the camera); the voxel size stays.
+    /// Moves the grid (the volume follows the camera) or its warp's focus; the voxel size stays.
     pub fn set_origin(&mut self, grid: &VoxelGrid) {
         self.params.origin_size = grid.origin.extend(grid.voxel).into();
+        self.params.warp = grid.warp.gpu().into();
         self.buffer.set(std::mem::offset_of!(VoxelParams, origin_size), bytemuck::bytes_of(&self.params.origin_size));
+        self.buffer.set(std::mem::offset_of!(VoxelParams, warp), bytemuck::bytes_of(&self.params.warp));
     }
 
     /// The camera a refinement sees this frame.
@@ -250,6 +255,7 @@ pub(crate) fn params_for(
         dims: grid.dims.extend(0).into(),
         tess: [level_scale, max_level, viewport_scale, 0.0],
         camera: glam::Mat4::IDENTITY.to_cols_array_2d(),
+        warp: grid.warp.gpu().into(),
     }
 }
 

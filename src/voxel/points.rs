@@ -149,14 +149,21 @@ pub struct Refine {
 const REFINE_DEPTH: vk::Format = vk::Format::D32_SFLOAT;
 
 impl Refine {
-    fn new(ctx: &Arc<Context>, scene: &Scene, scene_gpu: &SceneGpu, set: &DescriptorSet, spec: &[u32]) -> Result<Self> {
+    fn new(
+        ctx: &Arc<Context>,
+        scene: &Scene,
+        scene_gpu: &SceneGpu,
+        set: &DescriptorSet,
+        spec: &[u32],
+        warped: bool,
+    ) -> Result<Self> {
         let (w, h) = (scene.camera.width, scene.camera.height);
         let depth = Image::new(
             ctx,
             "refinement depth",
             ImageDesc::d2(REFINE_DEPTH, w, h, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT),
         )?;
-        let vert = || Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_REFINE_VERT).spec(spec);
+        let vert = || Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_REFINE_VERT).spec(spec).warped(warped);
         let layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
         let mut desc = GraphicsDesc::new("refinement depth", vec![vert()]);
         desc.set_layouts = layouts.clone();
@@ -168,7 +175,10 @@ impl Refine {
         let depth_pass = Pipeline::graphics(ctx, &desc)?;
         let mut desc = GraphicsDesc::new(
             "refinement",
-            vec![vert(), Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_REFINE_FRAG).spec(spec)],
+            vec![
+                vert(),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_REFINE_FRAG).spec(spec).warped(warped),
+            ],
         );
         desc.set_layouts = layouts;
         desc.push_constant_size = 4;
@@ -272,7 +282,9 @@ impl PointsVoxelizer {
                     .map(Points::Buffer);
                 let mut desc = GraphicsDesc::new(
                     "points voxelizer",
-                    vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_VERT).spec(&spec)],
+                    vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_VERT)
+                        .spec(&spec)
+                        .warped(volume.grid.is_warped())],
                 );
                 desc.set_layouts = layouts;
                 desc.vertex = Some(vertex_layout_untangented());
@@ -291,7 +303,9 @@ impl PointsVoxelizer {
                 let mesh_set = DescriptorSet::new(ctx, "points mesh", &[storage(0), storage(1)])?;
                 let mut desc = GraphicsDesc::new(
                     "points voxelizer (generating)",
-                    vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_GEN_VERT).spec(&spec)],
+                    vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_GEN_VERT)
+                        .spec(&spec)
+                        .warped(volume.grid.is_warped())],
                 );
                 desc.set_layouts = layouts.into_iter().chain([mesh_set.layout]).collect();
                 let points = if count > 0 {
@@ -308,7 +322,8 @@ impl PointsVoxelizer {
         // The scene's own camera until the renderer says otherwise (a sparse pool's census
         // then sees what the first frame will).
         params_buffer.set_camera(scene.camera.view_proj(&scene.mesh.bounds));
-        let refine = refine.then(|| Refine::new(ctx, scene, scene_gpu, &set, &spec)).transpose()?;
+        let refine =
+            refine.then(|| Refine::new(ctx, scene, scene_gpu, &set, &spec, volume.grid.is_warped())).transpose()?;
         Ok(PointsVoxelizer {
             ctx: ctx.clone(),
             pipeline,

@@ -55,7 +55,9 @@ impl RasterVoxelizer {
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
                 Stage::new(vk::ShaderStageFlags::GEOMETRY, shaders::VOXELIZE_RASTER_GEOM),
-                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG).spec(&spec),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG)
+                    .spec(&spec)
+                    .warped(volume.grid.is_warped()),
             ],
         );
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];

@@ -65,7 +65,9 @@ impl TessVoxelizer {
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
                 Stage::new(vk::ShaderStageFlags::TESSELLATION_CONTROL, shaders::VOXELIZE_TESS_TESC),
-                Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE).spec(&spec),
+                Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE)
+                    .spec(&spec)
+                    .warped(volume.grid.is_warped()),
             ],
         );
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];

@@ -105,6 +105,10 @@ pub struct BenchArgs {
     /// With --accuracy: every variant of the GI model study, not only the scene's own model.
     #[arg(long, requires = "accuracy")]
     pub study: bool,
+    /// With --accuracy: each scene also on a warped grid (Freed 2018 §4.6.1) of the same
+    /// voxels, beside its fitted grid (docs/benchmarks.md, "Warped voxels").
+    #[arg(long, requires = "accuracy", conflicts_with = "study")]
+    pub layouts: bool,
     /// With --study: only the variants whose name contains this text.
     #[arg(long, requires = "study", value_name = "TEXT")]
     pub only: Option<String>,
@@ -150,6 +154,8 @@ pub struct SceneArgs {
     /// With --follow: move the volume continuously instead of in whole voxels.
     #[arg(long)]
     pub no_snap: bool,
+    #[command(flatten)]
+    pub warp: WarpArgs,
     /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
@@ -201,6 +207,36 @@ pub fn float_in(text: &str, lo: f32, hi: f32) -> std::result::Result<f32, String
     }
 }
 
+pub fn warp_slope(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 0.05, 1.0)
+}
+
+/// How the grid's texels spread over its box.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum WarpArg {
+    None,
+    Function,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct WarpArgs {
+    /// Spread the texels unevenly: `function` warps each axis by the thesis' cubic (Freed 2018
+    /// §4.6.1), finest at the camera (1.5 - s/2 texels to an even grid's voxel) and coarsest at
+    /// the grid's faces (s, --warp-slope); `none`, even texels.
+    #[arg(long, value_enum, default_value = "none")]
+    pub warp: WarpArg,
+    /// With --warp function: the slope at the grid's faces, 0.05..=1 (the thesis' 0.25).
+    #[arg(long, value_name = "SLOPE", default_value_t = vct::voxel::warp::THESIS_END_SLOPE, value_parser = warp_slope)]
+    pub warp_slope: f32,
+}
+
+impl WarpArgs {
+    /// The warp's end slope, if the grid is warped.
+    pub fn end_slope(&self) -> Option<f32> {
+        (self.warp == WarpArg::Function).then_some(self.warp_slope)
+    }
+}
+
 pub fn cone_bias(text: &str) -> std::result::Result<f32, String> {
     float_in(text, 0.0, 16.0)
 }
@@ -212,6 +248,11 @@ pub fn temporal(text: &str) -> std::result::Result<f32, String> {
 impl SceneArgs {
     pub fn follow(&self) -> Option<vct::render::Follow> {
         self.follow.map(|extent| vct::render::Follow { extent, snap: !self.no_snap })
+    }
+
+    /// The warp's end slope, if the grid is warped.
+    pub fn warp(&self) -> Option<f32> {
+        self.warp.end_slope()
     }
 
     pub fn load(&self) -> Result<Scene> {
@@ -505,6 +546,9 @@ pub struct VoxelizeArgs {
     pub scene: Option<PathBuf>,
     #[command(flatten)]
     pub method: MethodArgs,
+    /// The warp, its finest texels at the scene's camera.
+    #[command(flatten)]
+    pub warp: WarpArgs,
     /// Write the occupancy as a .binvox file.
     #[arg(long)]
     pub export: Option<PathBuf>,
@@ -536,7 +580,7 @@ pub struct RenderArgs {
     /// Also write the linear radiance as OpenEXR.
     #[arg(long)]
     pub exr: Option<PathBuf>,
-    /// What to show: full|direct|indirect|diffuse|specular|ao|voxels|radiance:LEVEL.
+    /// What to show: full|direct|indirect|diffuse|specular|ao|voxels|texels|radiance:LEVEL.
     #[arg(long, default_value = "full")]
     pub view: View,
     /// Direct light only: skip cone tracing.

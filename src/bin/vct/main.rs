@@ -78,6 +78,7 @@ fn render(args: RenderArgs) -> Result<()> {
         gi: !args.no_gi,
         tracing,
         follow: args.scene.follow(),
+        warp: args.scene.warp(),
         inject_texels: args.scene.inject_texels,
         work: args.scene.work.work(),
         storage: args.scene.method.storage(),
@@ -158,7 +159,14 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let method = args.method.method()?;
     let res = args.method.res()?.unwrap_or(scene.settings.voxel_resolution);
-    let grid = VoxelGrid::choose(&scene.mesh.bounds, res, args.method.dims)?;
+    let mut grid = VoxelGrid::choose(&scene.mesh.bounds, res, args.method.dims)?;
+    if let Some(end_slope) = args.warp.end_slope() {
+        if args.view.is_some() {
+            // The cube view draws unit cubes of the even grid (render::voxel_view).
+            bail!("--view draws the voxels as cubes of an even grid: give it without --warp (or use `vct render --warp function --view voxels`)");
+        }
+        grid = grid.warped(scene.camera.eye, end_slope).context("warping the grid")?;
+    }
     let ctx = open_device(&args.gpu)?;
     let storage = args.method.storage();
     let run =
@@ -227,6 +235,7 @@ fn view(args: ViewArgs) -> Result<()> {
             resolution: args.scene.method.res()?,
             dims: args.scene.method.dims,
             follow: args.scene.follow(),
+            warp: args.scene.warp(),
             inject_texels: args.scene.inject_texels,
             work: args.scene.work.work(),
             storage: args.scene.method.storage(),
@@ -518,7 +527,11 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
                 .filter(|v| args.only.as_ref().is_none_or(|t| v.name.contains(t.as_str())))
                 .collect()
         } else {
-            vec![accuracy::Variant { name: "default".into(), gi: default.clone() }]
+            let mut v = vec![accuracy::Variant::default_of(&default)];
+            if args.layouts {
+                v.push(accuracy::Variant::warped(&default));
+            }
+            v
         };
         for &res in &resolutions {
             let direct = accuracy::direct_frame(ctx, &judged, res)?;
@@ -527,8 +540,8 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
                 let row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
                     .with_context(|| format!("measuring {name} {} at {res}³", v.name))?;
                 println!(
-                    "{:<20} {:<34} {:>4}³ {:>9.1} ms  FLIP {:.4} (direct only {:.4})  mean {:.3}",
-                    name, v.name, res, row.frame_ms, row.flip, row.flip_direct_only, row.mean_ratio
+                    "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}",
+                    name, v.name, res, row.frame_ms, row.memory_mib, row.flip, row.flip_direct_only, row.mean_ratio
                 );
                 rows.push(row);
             }
