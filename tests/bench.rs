@@ -104,3 +104,41 @@ fn quick_bench_writes_csv_json_and_charts() {
     // The reference was cached beside the run: a second run would not path-trace again.
     assert!(std::fs::read_dir(dir.join("cache")).unwrap().count() >= 2);
 }
+
+/// Issue "detail where the camera is": `vct bench --accuracy --layouts` measures each scene on
+/// its fitted grid and on warped grids of the same voxels (Freed 2018 §4.6.1) against the
+/// path tracer, with the volume's memory, and charts FLIP against memory.
+#[test]
+fn accuracy_bench_compares_layouts_at_the_same_voxels() {
+    let dir = std::env::temp_dir().join(format!("vct-layouts-{}", std::process::id()));
+    let out = dir.join("run");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
+        .args(["bench", "--accuracy", "--quick", "--layouts", "--warp-slopes", "0.5,0.25"])
+        .args(["--validation", "--out", out.to_str().unwrap()])
+        .env("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()))
+        .output()
+        .unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{text}");
+    let csv = std::fs::read_to_string(out.join("accuracy/accuracy.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    // Per embedded scene: its fitted grid, then the two warps.
+    let variants: Vec<&str> = rows.iter().map(|r| r[col("variant")]).collect();
+    assert!(!variants.is_empty() && variants.len() % 3 == 0, "{csv}");
+    for v in variants.chunks(3) {
+        assert_eq!(v, ["\"default\"", "\"warp function 0.5\"", "\"warp function 0.25\""], "{csv}");
+    }
+    for r in &rows {
+        let num = |name: &str| -> f64 { r[col(name)].parse().unwrap() };
+        assert!(num("memory_mib") > 0.0 && num("frame_ms") > 0.0, "{r:?}");
+        assert!((0.0..1.0).contains(&num("flip")) && num("flip") > 0.0, "{r:?}");
+    }
+    // The warp changes the image: its FLIP is not the fitted grid's.
+    for r in rows.chunks(3) {
+        assert_ne!(r[0][col("flip")], r[2][col("flip")], "{csv}");
+    }
+    assert!(out.join("accuracy/accuracy-memory.png").exists() && out.join("accuracy/accuracy.png").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -206,9 +206,8 @@ impl Variant {
     }
 
     /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
-    /// at the same memory.
-    pub fn warped(gi: &GiFile) -> Self {
-        let s = crate::voxel::warp::THESIS_END_SLOPE;
+    /// with end slope `s`, at the same voxel count.
+    pub fn warped(gi: &GiFile, s: f32) -> Self {
         Variant { name: format!("warp function {s}"), gi: gi.clone(), warp: Some(s) }
     }
 }

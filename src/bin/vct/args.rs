@@ -109,6 +109,10 @@ pub struct BenchArgs {
     /// voxels, beside its fitted grid (docs/benchmarks.md, "Warped voxels").
     #[arg(long, requires = "accuracy", conflicts_with = "study")]
     pub layouts: bool,
+    /// With --layouts: the warp's end slopes, e.g. 0.75,0.5,0.25 (each 0.05..=1; default: the
+    /// thesis' 0.25).
+    #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = warp_slope)]
+    pub warp_slopes: Option<Vec<f32>>,
     /// With --study: only the variants whose name contains this text.
     #[arg(long, requires = "study", value_name = "TEXT")]
     pub only: Option<String>,

@@ -529,7 +529,8 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
         } else {
             let mut v = vec![accuracy::Variant::default_of(&default)];
             if args.layouts {
-                v.push(accuracy::Variant::warped(&default));
+                let slopes = args.warp_slopes.clone().unwrap_or(vec![vct::voxel::warp::THESIS_END_SLOPE]);
+                v.extend(slopes.into_iter().map(|s| accuracy::Variant::warped(&default, s)));
             }
             v
         };
