@@ -2,17 +2,26 @@
 //! charts, with the expected columns and one row per configuration, the point voxelizer's
 //! density sweep among them.
 
-#[test]
-fn quick_bench_writes_csv_json_and_charts() {
-    let dir = std::env::temp_dir().join(format!("vct-bench-{}", std::process::id()));
+/// Runs `vct bench ARGS --validation --out DIR/run` in a fresh temporary DIR; returns DIR/run
+/// once it succeeded.
+fn bench(name: &str, args: &[&str]) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("vct-{name}-{}", std::process::id()));
     let out = dir.join("run");
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
-        .args(["bench", "--quick", "--validation", "--out", out.to_str().unwrap()])
+        .arg("bench")
+        .args(args)
+        .args(["--validation", "--out", out.to_str().unwrap()])
         .env("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()))
         .output()
         .unwrap();
     let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(o.status.success(), "{text}");
+    out
+}
+
+#[test]
+fn quick_bench_writes_csv_json_and_charts() {
+    let out = bench("bench", &["--quick"]);
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let mut lines = csv.lines();
     assert_eq!(lines.next().unwrap(), vct::bench::CSV_HEADER);
@@ -102,7 +111,7 @@ fn quick_bench_writes_csv_json_and_charts() {
         }
     }
     // The reference was cached beside the run: a second run would not path-trace again.
-    assert!(std::fs::read_dir(dir.join("cache")).unwrap().count() >= 2);
+    assert!(std::fs::read_dir(out.parent().unwrap().join("cache")).unwrap().count() >= 2);
 }
 
 /// Issue "detail where the camera is": `vct bench --accuracy --layouts` measures each scene on
@@ -110,16 +119,7 @@ fn quick_bench_writes_csv_json_and_charts() {
 /// path tracer, with the volume's memory, and charts FLIP against memory.
 #[test]
 fn accuracy_bench_compares_layouts_at_the_same_voxels() {
-    let dir = std::env::temp_dir().join(format!("vct-layouts-{}", std::process::id()));
-    let out = dir.join("run");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
-        .args(["bench", "--accuracy", "--quick", "--layouts", "--warp-slopes", "0.5,0.25"])
-        .args(["--validation", "--out", out.to_str().unwrap()])
-        .env("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()))
-        .output()
-        .unwrap();
-    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
-    assert!(o.status.success(), "{text}");
+    let out = bench("layouts", &["--accuracy", "--quick", "--layouts", "--warp-slopes", "0.5,0.25"]);
     let csv = std::fs::read_to_string(out.join("accuracy/accuracy.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
@@ -140,5 +140,5 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
         assert_ne!(r[0][col("flip")], r[2][col("flip")], "{csv}");
     }
     assert!(out.join("accuracy/accuracy-memory.png").exists() && out.join("accuracy/accuracy.png").exists());
-    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(out.parent().unwrap());
 }
