@@ -141,6 +141,9 @@ fn cli_reports_bad_input_without_panicking() {
     let (code, err) = vct(&["voxelize", "--warp", "function", "--view", d.join("u.png").to_str().unwrap()]);
     assert_eq!(code, 1);
     assert!(err.contains("--warp"), "{err}");
+    let (code, err) = vct(&["voxelize", "--warp", "function", "--export", d.join("u.binvox").to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("--warp") && err.contains("binvox"), "{err}");
     for (flag, value) in [
         ("--temporal", "0"),
         ("--temporal", "NaN"),

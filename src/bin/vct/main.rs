@@ -165,6 +165,10 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
             // The cube view draws unit cubes of the even grid (render::voxel_view).
             bail!("--view draws the voxels as cubes of an even grid: give it without --warp (or use `vct render --warp function --view voxels`)");
         }
+        if args.export.is_some() {
+            // .binvox holds cubes of one size.
+            bail!("--export writes a .binvox of even cubes, which cannot hold warped texels: give it without --warp");
+        }
         grid = grid.warped(scene.camera.eye, end_slope).context("warping the grid")?;
     }
     let ctx = open_device(&args.gpu)?;
@@ -176,6 +180,10 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     }
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
+    if g.is_warped() {
+        let (focus, s) = (g.warp.centre, g.warp.end_slope);
+        println!("warped (Freed 2018 §4.6.1): finest at grid fraction {focus:.3}, end slope {s}: texels {:.2}× to {s}× as fine as the voxel", 1.5 - 0.5 * s);
+    }
     let pool = run.bricks.map(|b| b.capacity + 1);
     println!("storage: {}", run.storage.label());
     let layout = vct::render::memory::Layout {
