@@ -86,13 +86,6 @@ float self_clamp_level(float height, float surface) {
     return log2(max((height - surface) / 1.5, 1.0)) - 1.0;
 }
 
-// Texels per grid voxel at grid fraction `pos` of a warped grid: the geometric mean of the
-// three axes' slopes.
-float warp_fine(vec3 pos, vec4 warp) {
-    vec3 s = warp_slope(pos, warp);
-    return exp2((log2(s.x) + log2(s.y) + log2(s.z)) / 3.0);
-}
-
 // A cone's start offsets are in texels: in a warped grid, in the texels where it starts, as
 // deep as they reach along the normal (a cone leaving a wall whose texels are four grid voxels
 // thick starts four times as far out, clear of them, as it does from a wall of even texels).
@@ -120,7 +113,7 @@ bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, Cone
                  out float level, out float step) {
     pos = start + m.dist * dir / p.dims;
     // Texels per grid voxel here (1 unwarped).
-    float fine = warp_on(p.warp) ? warp_fine(pos, p.warp) : 1.0;
+    float fine = warp_on(p.warp) ? warp_mean_slope(pos, p.warp) : 1.0;
     float diameter = max(2.0 * m.dist * tan_half * fine, 1.0);
     float l = log2(diameter) + p.lod_offset;
     if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) {

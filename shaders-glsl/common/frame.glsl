@@ -80,7 +80,7 @@ vec3 texel_centre_world(ivec3 v) {
 
 // Texels per grid voxel where they are finest (1 unwarped).
 float warp_peak() {
-    return 1.5 - 0.5 * min(frame.voxel_warp.w, 1.0);
+    return warp_peak_slope(frame.voxel_warp);
 }
 
 // Whether voxel `v` lies inside the grid.

@@ -74,8 +74,7 @@ vec3 facing_normal(vec3 n, vec3 world) {
 // even grid's, towards blue where they are finer (1.5 times: full blue) and towards red where
 // they are coarser (4 times: full red).
 vec3 texel_size_colour(vec3 world) {
-    vec3 s = warp_on(frame.voxel_warp) ? warp_slope(world_to_march(world), frame.voxel_warp) : vec3(1.0);
-    float t = (log2(s.x) + log2(s.y) + log2(s.z)) / 3.0;
+    float t = warp_on(frame.voxel_warp) ? log2(warp_mean_slope(world_to_march(world), frame.voxel_warp)) : 0.0;
     vec3 even = vec3(0.1, 0.8, 0.1);
     return t >= 0.0 ? mix(even, vec3(0.1, 0.2, 1.0), min(t / log2(1.5), 1.0)) : mix(even, vec3(1.0, 0.1, 0.1), min(-t / 2.0, 1.0));
 }

@@ -40,12 +40,16 @@ vec3 to_grid_space(vec3 world) {
     return (world - voxel.origin_size.xyz) / voxel.origin_size.w;
 }
 
-// World position to texel coordinates (texel v spans [v, v + 1)), through the warp if any.
-vec3 to_voxel_space(vec3 world) {
-    vec3 g = to_grid_space(world);
+// Grid coordinates to texel coordinates (texel v spans [v, v + 1)), through the warp if any.
+vec3 grid_to_voxel_space(vec3 g) {
     if (!warp_on(voxel.warp)) return g;
     vec3 n = vec3(voxel.dims.xyz);
     return warp_forward(g / n, voxel.warp) * n;
+}
+
+// World position to texel coordinates.
+vec3 to_voxel_space(vec3 world) {
+    return grid_to_voxel_space(to_grid_space(world));
 }
 
 // Texel `v`'s box in grid coordinates: its centre and half size (a warped texel is a box of its

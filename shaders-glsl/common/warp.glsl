@@ -14,6 +14,11 @@ bool warp_on(vec4 warp) {
     return WARPED && warp.w < 1.0;
 }
 
+// The largest slope (at the centre): texels per grid voxel where they are finest (1: no warp).
+float warp_peak_slope(vec4 warp) {
+    return 1.5 - 0.5 * min(warp.w, 1.0);
+}
+
 // One side's half-cubic: h(0) = 0, h(1) = 1, slope a at 0 and 1.5 - a/2 at 1.
 vec3 warp_h(vec3 u, float a) {
     return u * (a + u * (1.5 - 1.5 * a + u * (0.5 * a - 0.5)));
@@ -42,6 +47,13 @@ vec3 warp_slope(vec3 x, vec4 warp) {
     vec3 above = warp_h_slope(clamp((1.0 - x) / max(1.0 - c, 1e-6), 0.0, 1.0), a);
     vec3 inside = mix(above, below, lessThan(x, c));
     return mix(vec3(a), inside, vec3(greaterThan(x, vec3(0.0))) * vec3(lessThan(x, vec3(1.0))));
+}
+
+// Texels per grid voxel at grid fraction `x`, as one size: the geometric mean of the three
+// axes' slopes.
+float warp_mean_slope(vec3 x, vec4 warp) {
+    vec3 s = warp_slope(x, warp);
+    return exp2((log2(s.x) + log2(s.y) + log2(s.z)) / 3.0);
 }
 
 // u in [0, 1] with h(u) = t: Newton's method from min(1, t/a), right of the root (h(u) >= a u),

@@ -42,8 +42,8 @@ vec3 swizzle(vec3 v, uint axis) {
 // the coverage is exact, and each writes only the texels it covers (judged whole, a texel
 // would take the albedo of every pixel around it).
 void write_warped(vec3 lo, vec3 hi, vec3 albedo, Material m) {
-    ivec3 a = ivec3(floor(to_voxel_space(voxel.origin_size.xyz + unswizzle(lo, in_axis) * voxel.origin_size.w) - 1e-4));
-    ivec3 b = ivec3(floor(to_voxel_space(voxel.origin_size.xyz + unswizzle(hi, in_axis) * voxel.origin_size.w) + 1e-4));
+    ivec3 a = ivec3(floor(grid_to_voxel_space(unswizzle(lo, in_axis)) - 1e-4));
+    ivec3 b = ivec3(floor(grid_to_voxel_space(unswizzle(hi, in_axis)) + 1e-4));
     a = max(a, ivec3(0));
     b = min(b, min(ivec3(voxel.dims.xyz) - 1, a + 7));
     for (int z = a.z; z <= b.z; z++) {
@@ -77,9 +77,9 @@ void main() {
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
     if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) == 0u) {
         float z = plane_depth(gl_FragCoord.xy / scale);
-        vec3 at = warp_on(voxel.warp) ? floor(swizzle(to_voxel_space(voxel.origin_size.xyz +
-                                              unswizzle(vec3(gl_FragCoord.xy / scale, z), in_axis) * voxel.origin_size.w), in_axis))
-                                      : vec3(xy, floor(z));
+        vec3 at = warp_on(voxel.warp)
+                      ? floor(swizzle(grid_to_voxel_space(unswizzle(vec3(gl_FragCoord.xy / scale, z), in_axis)), in_axis))
+                      : vec3(xy, floor(z));
         write_voxel(ivec3(unswizzle(at, in_axis)), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
         return;
     }

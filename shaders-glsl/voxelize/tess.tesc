@@ -31,7 +31,7 @@ void main() {
     out_uv[gl_InvocationID] = in_uv[gl_InvocationID];
     if (gl_InvocationID == 0) {
         // In texels of the finest the grid has (a warped grid's are 1.5 - a/2 to a grid voxel).
-        float fine = 1.5 - 0.5 * min(voxel.warp.w, 1.0);
+        float fine = warp_peak_slope(voxel.warp);
         vec3 p0 = to_grid_space(in_world[0]) * fine;
         vec3 p1 = to_grid_space(in_world[1]) * fine;
         vec3 p2 = to_grid_space(in_world[2]) * fine;

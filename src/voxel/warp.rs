@@ -93,6 +93,12 @@ impl Warp {
         self.end_slope >= 1.0
     }
 
+    /// The largest slope (at the centre): how many times finer than the grid's voxel the finest
+    /// texels are.
+    pub fn peak_slope(&self) -> f32 {
+        1.5 - 0.5 * self.end_slope.min(1.0)
+    }
+
     /// The texture fraction of grid fraction `x` along `axis`.
     pub fn forward(&self, x: f64, axis: usize) -> f64 {
         let (c, a) = (self.centre[axis] as f64, self.end_slope as f64);

@@ -182,7 +182,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
     if g.is_warped() {
         let (focus, s) = (g.warp.centre, g.warp.end_slope);
-        println!("warped (Freed 2018 §4.6.1): finest at grid fraction {focus:.3}, end slope {s}: texels {:.2}× to {s}× as fine as the voxel", 1.5 - 0.5 * s);
+        println!("warped (Freed 2018 §4.6.1): finest at grid fraction {focus:.3}, end slope {s}: texels {:.2}× to {s}× as fine as the voxel", g.warp.peak_slope());
     }
     let pool = run.bricks.map(|b| b.capacity + 1);
     println!("storage: {}", run.storage.label());
