@@ -27,7 +27,8 @@ fn quick_bench_writes_csv_json_and_charts() {
     assert_eq!(lines.next().unwrap(), vct::bench::CSV_HEADER);
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     // Cornell × {32, 64} × {tess, raster-msaa, raster-none, raster-conservative, points (,
-    // raster-hw where offered)} with the default storage, and raster-conservative with the others
+    // raster-hw where offered)} with the default storage, and the default voxelizer (raster-conservative
+    // on lavapipe, which has no hardware conservative rasterization) with the others
     // offered: dense (and the pool beside residency where that is the default).
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();

@@ -365,7 +365,12 @@ pub fn tess_ratio(r: &Results, before: Option<&Results>) -> Regime {
 /// Memory and frame time against FLIP, one curve per scene and storage mode (the default
 /// voxelizer's rows: the only one every mode runs), over the resolutions.
 pub fn storage_regimes(r: &Results) -> Vec<Regime> {
-    let method = crate::render::RenderOptions::default().method.label();
+    // The default voxelizer depends on the device that ran (`Coverage::Auto`): it is the one
+    // with rows in a storage mode other than the default's.
+    let stored = r.stored();
+    let Some(method) = r.rows.iter().find(|x| x.storage != stored).map(|x| x.voxelizer.clone()) else {
+        return Vec::new();
+    };
     let rows: Vec<&super::Row> = r.rows.iter().filter(|x| x.voxelizer == method).collect();
     let mut keys: Vec<(String, String)> = rows.iter().map(|x| (x.scene.clone(), x.storage.clone())).collect();
     keys.sort();
@@ -406,6 +411,10 @@ pub fn storage_regimes(r: &Results) -> Vec<Regime> {
 fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let pts = || g.series.iter().flat_map(|s| s.points.iter().copied());
+    if pts().all(|p| !(p.0.is_finite() && p.1.is_finite())) {
+        // No finite point gives no range to draw (plotters would search for ticks forever).
+        return Err(plotters::drawing::DrawingAreaErrorKind::LayoutError);
+    }
     let (xlo, xhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.0), h.max(p.0)));
     let (ylo, yhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
     let pad = ((yhi - ylo) * 0.1).max(1e-3);

@@ -247,7 +247,7 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
     for (name, scene) in &opts.scenes {
         let (reference, info) = reference_cached(scene, name, 1, false, opts.reference_spp, &opts.cache_dir, progress)?;
         references.push(info);
-        let default_method = RenderOptions::default().method;
+        let default_method = RenderOptions::default().method.on(&ctx.info.features);
         // The default storage for every voxelizer; the others (those the device offers) with the
         // default voxelizer.
         let stored = Storage::default().resolve(ctx, false);

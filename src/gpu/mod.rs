@@ -21,7 +21,7 @@ pub use commands::{
 };
 pub use context::{Context, ContextOptions, DeviceInfo};
 pub use descriptor::{Binding, DescriptorSet};
-pub use features::Feature;
+pub use features::{Feature, FeatureSet};
 pub use image::{Image, ImageDesc, Sampler};
 pub use pipeline::{GraphicsDesc, Pipeline, Stage, VertexLayout};
 pub use swapchain::{FrameOutcome, Swapchain};

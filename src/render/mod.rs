@@ -194,8 +194,9 @@ pub enum Work {
 impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
-            // Exact and the fastest (docs/benchmarks.md, "Hostile geometry").
-            method: VoxelizeMethod::raster(crate::voxel::Coverage::Conservative),
+            // Exact and the fastest: hardware conservative rasterization where the device has
+            // it, else the geometry shader's (docs/benchmarks.md, "Hostile geometry", "On a GPU").
+            method: VoxelizeMethod::raster(crate::voxel::Coverage::Auto),
             resolution: None,
             dims: None,
             view: View::Full,
@@ -289,7 +290,9 @@ fn volume_key(u: &FrameUniforms, camera: bool) -> Vec<u8> {
 }
 
 impl Renderer {
-    pub fn new(ctx: &Arc<Context>, scene: Scene, options: RenderOptions) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, scene: Scene, mut options: RenderOptions) -> Result<Self> {
+        // The options say what runs (labels, timings, the viewer's overlay).
+        options.method = options.method.on(&ctx.info.features);
         let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
         let grid = match (options.follow, options.dims) {
             (Some(_), Some(_)) => {

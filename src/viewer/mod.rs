@@ -325,8 +325,8 @@ impl App {
             }
             KeyCode::KeyV => {
                 options.method = options.method.next();
-                println!("voxelizer: {}", options.method.label());
                 Self::rebuild(r, options)?;
+                println!("voxelizer: {}", r.renderer.options.method.label());
             }
             KeyCode::KeyX => {
                 options.warp = match options.warp {

@@ -393,6 +393,7 @@ pub enum TracingArg {
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum CoverageArg {
+    Auto,
     Msaa,
     None,
     Hw,
@@ -407,8 +408,9 @@ pub struct MethodArgs {
     #[arg(long, value_enum, default_value = "raster")]
     pub voxelizer: VoxelizerArg,
     /// Rasterized path: coverage by 4x MSAA, none (pixel centres), conservative (the triangle
-    /// grown by half a pixel in the geometry shader), or hardware (VK_EXT_conservative_rasterization).
-    #[arg(long, value_enum, default_value = "conservative")]
+    /// grown by half a pixel in the geometry shader), hardware (VK_EXT_conservative_rasterization),
+    /// or auto: exact, by the hardware where the device offers it, else the geometry shader.
+    #[arg(long, value_enum, default_value = "auto")]
     pub coverage: CoverageArg,
     /// Voxels along the scene's longest axis (a power of two, 16..512); the other axes are
     /// fitted to the scene's shape. Default: the scene's. `vct render` also takes `auto`: the
@@ -519,6 +521,7 @@ impl MethodArgs {
             },
             VoxelizerArg::Raster => VoxelizeMethod::Raster {
                 coverage: match self.coverage {
+                    CoverageArg::Auto => Coverage::Auto,
                     CoverageArg::Msaa => Coverage::Msaa,
                     CoverageArg::None => Coverage::None,
                     CoverageArg::Hw => Coverage::Hardware,

@@ -130,7 +130,7 @@ fn render(args: RenderArgs) -> Result<()> {
         let json = serde_json::json!({
             "device": ctx.info.name,
             "driver": ctx.info.driver,
-            "voxelizer": options.method.label(),
+            "voxelizer": renderer.options.method.label(),
             "tracing": format!("{:?}", options.tracing),
             "resolution": renderer.voxels.grid.longest(),
             "dims": renderer.voxels.grid.dims.to_array(),
@@ -172,6 +172,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
         grid = grid.warped(scene.camera.eye, end_slope).context("warping the grid")?;
     }
     let ctx = open_device(&args.gpu)?;
+    let method = method.on(&ctx.info.features);
     let storage = args.method.storage();
     let run =
         headless::voxelize_stored(&ctx, &scene, method, grid, storage, args.method.bricks, 3).context("voxelizing")?;
