@@ -153,6 +153,9 @@ fn cli_reports_bad_input_without_panicking() {
         ("--warp-slope", "1.5"),
         ("--warp-slope", "inf"),
         ("--warp", "perspective"),
+        ("--in-flight", "0"),
+        ("--in-flight", "3"),
+        ("--coverage", "exact"),
     ] {
         let (code, err) = vct(&["render", flag, value, "--out", d.join("w.png").to_str().unwrap()]);
         assert_eq!(code, 2, "{flag} {value}: {err}");

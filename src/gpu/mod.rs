@@ -6,6 +6,7 @@ pub mod commands;
 pub mod context;
 pub mod descriptor;
 pub mod features;
+pub mod frames;
 pub mod image;
 pub mod pipeline;
 pub mod scope;
@@ -22,6 +23,7 @@ pub use commands::{
 pub use context::{Context, ContextOptions, DeviceInfo};
 pub use descriptor::{Binding, DescriptorSet};
 pub use features::{Feature, FeatureSet};
+pub use frames::FrameRing;
 pub use image::{Image, ImageDesc, Sampler};
 pub use pipeline::{GraphicsDesc, Pipeline, Stage, VertexLayout};
 pub use swapchain::{FrameOutcome, Swapchain};

@@ -1,16 +1,16 @@
 //! Window surface and swapchain (for the viewer): owns the surface, the swapchain and its
-//! images, and per frame in flight a command buffer, an acquire semaphore and a fence;
-//! recreated on resize. A frame is recorded by the caller into a command buffer that ends by
-//! writing the acquired image. With `FRAMES_IN_FLIGHT` frames in flight the CPU records a frame
-//! while the GPU runs the one before; a frame waits only for the fence of the frame that last
-//! used its slot.
+//! images, and per frame in flight an acquire semaphore beside the [`FrameRing`]'s command
+//! buffer and fence; recreated on resize. A frame is recorded by the caller into a command
+//! buffer that ends by writing the acquired image. With `FRAMES_IN_FLIGHT` frames in flight the
+//! CPU records a frame while the GPU runs the one before; a frame waits only for the fence of
+//! the frame that last used its slot.
 
 use std::sync::Arc;
 
 use ash::vk;
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 
-use super::{Context, FRAMES_IN_FLIGHT};
+use super::{Context, FrameRing, FRAMES_IN_FLIGHT};
 use crate::error::{Error, Result, VkContext};
 
 pub struct Swapchain {
@@ -23,13 +23,10 @@ pub struct Swapchain {
     pub extent: vk::Extent2D,
     pub format: vk::Format,
     vsync: bool,
-    pool: vk::CommandPool,
-    /// Per frame in flight (`slot` the next): its commands, the semaphore its acquired image
-    /// signals, and the fence its submission signals.
-    cmds: Vec<vk::CommandBuffer>,
+    /// Per frame in flight: its commands and fence, and (`image_available`, by the ring's slot)
+    /// the semaphore its acquired image signals.
+    ring: FrameRing,
     image_available: Vec<vk::Semaphore>,
-    in_flight: Vec<vk::Fence>,
-    slot: usize,
     /// Per swapchain image: signalled by the frame that wrote it, waited on by its present.
     render_finished: Vec<vk::Semaphore>,
 }
@@ -68,15 +65,13 @@ impl Swapchain {
         }
         let loader = ash::khr::swapchain::Device::new(&ctx.instance, &ctx.device);
         let d = &ctx.device;
-        let pool = unsafe {
-            d.create_command_pool(
-                &vk::CommandPoolCreateInfo::default()
-                    .queue_family_index(ctx.queue_family)
-                    .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER),
-                None,
-            )
-        }
-        .vk("vkCreateCommandPool")?;
+        let ring = match FrameRing::new(ctx, FRAMES_IN_FLIGHT) {
+            Ok(r) => r,
+            Err(e) => {
+                unsafe { surface_loader.destroy_surface(surface, None) };
+                return Err(e);
+            }
+        };
         // Everything made so far is owned by `s` (or its pool) before the next call can fail.
         let mut s = Swapchain {
             ctx: ctx.clone(),
@@ -88,27 +83,14 @@ impl Swapchain {
             extent: vk::Extent2D { width, height },
             format: vk::Format::B8G8R8A8_UNORM,
             vsync,
-            pool,
-            cmds: Vec::new(),
+            ring,
             image_available: Vec::new(),
-            in_flight: Vec::new(),
-            slot: 0,
             render_finished: Vec::new(),
         };
-        s.cmds = unsafe {
-            d.allocate_command_buffers(
-                &vk::CommandBufferAllocateInfo::default()
-                    .command_pool(pool)
-                    .command_buffer_count(FRAMES_IN_FLIGHT as u32),
-            )
-        }
-        .vk("vkAllocateCommandBuffers")?;
         for _ in 0..FRAMES_IN_FLIGHT {
             let sem =
                 unsafe { d.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }.vk("vkCreateSemaphore")?;
             s.image_available.push(sem);
-            let signalled = vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED);
-            s.in_flight.push(unsafe { d.create_fence(&signalled, None) }.vk("vkCreateFence")?);
         }
         s.recreate(width, height)?;
         Ok(s)
@@ -192,15 +174,7 @@ impl Swapchain {
 
     /// Waits until every frame in flight has finished.
     pub fn wait_idle(&self) -> Result<()> {
-        self.wait(&self.in_flight)
-    }
-
-    fn wait(&self, fences: &[vk::Fence]) -> Result<()> {
-        match unsafe { self.ctx.device.wait_for_fences(fences, true, super::context::GPU_TIMEOUT_S * 1_000_000_000) } {
-            Ok(()) => Ok(()),
-            Err(vk::Result::TIMEOUT) => Err(Error::Timeout("viewer frame".into(), super::context::GPU_TIMEOUT_S)),
-            Err(result) => Err(Error::Vulkan { call: "vkWaitForFences", result }),
-        }
+        self.ring.wait_idle()
     }
 
     /// Acquires an image, records `record(cmd, image)` (which must leave the image in
@@ -208,38 +182,19 @@ impl Swapchain {
     /// slot, `FRAMES_IN_FLIGHT` frames ago; the one after it may still be running. `record` is
     /// not called when the swapchain is out of date before acquiring.
     pub fn frame(&mut self, record: impl FnOnce(vk::CommandBuffer, vk::Image)) -> Result<FrameOutcome> {
-        let slot = self.slot;
-        self.wait(&self.in_flight[slot..slot + 1])?;
-        let d = &self.ctx.device;
-        let (cmd, fence, acquired) = (self.cmds[slot], self.in_flight[slot], self.image_available[slot]);
+        self.ring.wait_slot()?;
+        let acquired = self.image_available[self.ring.slot()];
+        // Acquire before the fence is reset: an out-of-date swapchain leaves the slot signalled.
         let index = match unsafe { self.loader.acquire_next_image(self.raw, u64::MAX, acquired, vk::Fence::null()) } {
             Ok((i, _)) => i,
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => return Ok(FrameOutcome::OutOfDate),
             Err(result) => return Err(Error::Vulkan { call: "vkAcquireNextImageKHR", result }),
         };
-        unsafe {
-            d.reset_fences(&[fence]).vk("vkResetFences")?;
-            d.begin_command_buffer(
-                cmd,
-                &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
-            )
-            .vk("vkBeginCommandBuffer")?;
-        }
+        let cmd = self.ring.begin()?;
         record(cmd, self.images[index as usize]);
-        let finished = self.render_finished[index as usize];
-        self.slot = (slot + 1) % FRAMES_IN_FLIGHT;
+        let signal = [self.render_finished[index as usize]];
+        self.ring.submit(&[acquired], &signal)?;
         unsafe {
-            d.end_command_buffer(cmd).vk("vkEndCommandBuffer")?;
-            let wait = [acquired];
-            let stages = [vk::PipelineStageFlags::ALL_COMMANDS];
-            let cmds = [cmd];
-            let signal = [finished];
-            let submit = [vk::SubmitInfo::default()
-                .wait_semaphores(&wait)
-                .wait_dst_stage_mask(&stages)
-                .command_buffers(&cmds)
-                .signal_semaphores(&signal)];
-            d.queue_submit(self.ctx.queue, &submit, fence).vk("vkQueueSubmit")?;
             let swapchains = [self.raw];
             let indices = [index];
             let present =
@@ -264,10 +219,7 @@ impl Drop for Swapchain {
             for s in self.image_available.drain(..) {
                 d.destroy_semaphore(s, None);
             }
-            for f in self.in_flight.drain(..) {
-                d.destroy_fence(f, None);
-            }
-            d.destroy_command_pool(self.pool, None);
+            // The ring (fences, commands) goes with the fields, after this.
             self.loader.destroy_swapchain(self.raw, None);
             self.surface_loader.destroy_surface(self.surface, None);
         }

@@ -551,6 +551,22 @@ impl Renderer {
         self.timings()
     }
 
+    /// Records one frame into `ring` and submits it without waiting for it (frames in flight,
+    /// as the viewer runs them). Returns the GPU times of the frame two before, which the ring
+    /// has seen finish (empty for the first two frames).
+    pub fn submit_in_flight(&self, ring: &mut gpu::FrameRing) -> Result<Vec<Timing>> {
+        let (mut settled, mut bricks) = (Ok(Vec::new()), Ok(()));
+        ring.frame(|cmd| {
+            settled = self.settled_timings();
+            bricks = self.voxels.bricks.check_settled();
+            self.update_uniforms();
+            self.record(cmd);
+        })?;
+        self.frame_recorded();
+        bricks?;
+        settled
+    }
+
     /// Marks a frame as submitted (the next one may blend with its radiance).
     pub fn frame_recorded(&self) {
         self.frame_index.set(self.frame_index.get() + 1);

@@ -602,6 +602,12 @@ pub struct RenderArgs {
     /// Render this many frames and report each pass's median GPU time (the last frame is saved).
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
+    /// Submit the frames with up to this many in flight (1 or 2), as the viewer does, instead of
+    /// waiting for each; prints the wall-clock time a frame beside the GPU times, which is what
+    /// the overlap of the host's recording with the GPU's frame buys (docs/benchmarks.md, "On a
+    /// GPU").
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=2))]
+    pub in_flight: Option<u32>,
     /// Keep the volume between frames while nothing it depends on changes, as `vct view` does
     /// (with --frames: the timings of a still view).
     #[arg(long, value_enum, default_value = "off")]

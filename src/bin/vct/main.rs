@@ -118,9 +118,28 @@ fn render(args: RenderArgs) -> Result<()> {
         bail!("--frames must be in 1..=10000, got {}", args.frames);
     }
     let mut runs = Vec::new();
-    for _ in 0..args.frames {
-        runs.push(renderer.render().context("rendering")?);
+    let started = std::time::Instant::now();
+    match args.in_flight {
+        None => {
+            for _ in 0..args.frames {
+                runs.push(renderer.render().context("rendering")?);
+            }
+        }
+        Some(k) => {
+            let mut ring = vct::gpu::FrameRing::new(&ctx, k as usize)?;
+            for _ in 0..args.frames {
+                runs.push(renderer.submit_in_flight(&mut ring).context("rendering")?);
+            }
+            ring.wait_idle()?;
+            // The last two frames, which no later frame waited for.
+            runs.push(renderer.settled_timings()?);
+            runs.push(renderer.timings()?);
+            runs.retain(|t| !t.is_empty());
+        }
     }
+    let wall = started.elapsed().as_secs_f64() * 1e3 / args.frames as f64;
+    let how = args.in_flight.map_or("each waited for".into(), |k| format!("{k} in flight"));
+    println!("wall clock: {wall:.3} ms a frame over {} frames, {how}", args.frames);
     let timings = vct::gpu::timer::median(&runs);
     let frame = renderer.read_frame()?;
     print_timings(&timings);
@@ -139,6 +158,9 @@ fn render(args: RenderArgs) -> Result<()> {
             "passes": timings,
             "memory": memory,
             "storage": renderer.voxels.bricks.storage.label(),
+            "frames": args.frames,
+            "in_flight": args.in_flight,
+            "wall_ms_per_frame": wall,
             "auto": choice,
         });
         std::fs::write(path, serde_json::to_string_pretty(&json)?)
