@@ -18,5 +18,6 @@ cp /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf .gpu/fonts/
 for d in "$@"; do cp "$d"/reference-* .gpu/cache/; done
 o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
 apt-get $o update >/dev/null
-(cd .gl && apt-get $o download libvulkan1 vulkan-validationlayers)
+# The NVIDIA ICD (libGLX_nvidia) needs the GL vendor-neutral dispatch libraries beside the loader.
+(cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 vulkan-validationlayers)
 du -sh .gpu .gl

@@ -340,8 +340,10 @@ fn measure(
     reference: &[Vec3],
     options: RenderOptions,
 ) -> Result<Row> {
-    let (method, res) = (options.method, options.resolution.unwrap_or(0));
+    let res = options.resolution.unwrap_or(0);
     let renderer = Renderer::new(ctx, scene.clone(), options)?;
+    // What ran (`Coverage::Auto` resolved for this device).
+    let method = renderer.options.method;
     // Accumulation is judged once it has converged: every pixel traced once.
     let converge = if options.gi_accumulate { options.gi_scale.pow(2) } else { 0 };
     for _ in 0..opts.warmup.max(converge) {
