@@ -224,8 +224,9 @@ fn mean_lum(img: &[Vec3]) -> f32 {
     img.iter().map(|p| lum(*p)).sum::<f32>() / img.len().max(1) as f32
 }
 
-/// Renders `scene` with `options`: median frame GPU ms over `frames` after one warm-up, the
-/// last frame's linear radiance and RGB8, and the volume's memory (bytes).
+/// Renders `scene` with `options`: median frame GPU ms over `frames` after one warm-up
+/// ([`super::timed_frames`]), the last frame's linear radiance and RGB8, and the volume's memory
+/// (bytes).
 pub fn render_timed(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -233,8 +234,7 @@ pub fn render_timed(
     frames: u32,
 ) -> Result<(f64, Vec<Vec3>, Vec<u8>, u64)> {
     let r = Renderer::new(ctx, scene.clone(), options)?;
-    r.render()?;
-    let runs: Vec<_> = (0..frames.max(1)).map(|_| r.render()).collect::<Result<_>>()?;
+    let runs = super::timed_frames(&r, 1, frames)?;
     let total = median(&runs).iter().find(|t| t.pass == "total").map(|t| t.ms).unwrap_or(0.0);
     let f = r.read_frame()?;
     Ok((total, f.linear(), f.rgb8(), r.memory().bytes))

@@ -332,6 +332,25 @@ pub fn run(ctx: &Arc<Context>, opts: &BenchOptions, progress: &dyn Fn(&str)) -> 
 
 /// Renders `scene` with `options` (warm-up, then timed frames) and measures the frame against
 /// the path-traced `reference` and the voxels against the exact coverage.
+/// Renders `warmup` frames, then returns the GPU times of `frames` more. A fast device idles
+/// while the next configuration is built and ramps its clocks up again (an H200: 345 MHz idle,
+/// 1980 MHz at most; its 5-frame rows of a few ms ranged up to 2×), so both phases also last at
+/// least 0.5 s and 0.25 s of wall clock (at most 1000 frames each). A CPU driver's frames take
+/// longer than that.
+pub fn timed_frames(renderer: &Renderer, warmup: u32, frames: u32) -> Result<Vec<Vec<Timing>>> {
+    let started = std::time::Instant::now();
+    let mut n = 0;
+    while n < warmup || (started.elapsed().as_secs_f64() < 0.5 && n < 1000) {
+        renderer.render()?;
+        n += 1;
+    }
+    let (started, mut runs) = (std::time::Instant::now(), Vec::new());
+    while runs.len() < frames.max(1) as usize || (started.elapsed().as_secs_f64() < 0.25 && runs.len() < 1000) {
+        runs.push(renderer.render()?);
+    }
+    Ok(runs)
+}
+
 fn measure(
     ctx: &Arc<Context>,
     opts: &BenchOptions,
@@ -346,10 +365,7 @@ fn measure(
     let method = renderer.options.method;
     // Accumulation is judged once it has converged: every pixel traced once.
     let converge = if options.gi_accumulate { options.gi_scale.pow(2) } else { 0 };
-    for _ in 0..opts.warmup.max(converge) {
-        renderer.render()?;
-    }
-    let runs: Vec<Vec<Timing>> = (0..opts.frames.max(1)).map(|_| renderer.render()).collect::<Result<_>>()?;
+    let runs = timed_frames(&renderer, opts.warmup.max(converge), opts.frames)?;
     let passes = median(&runs);
     let totals: Vec<f64> = runs.iter().filter_map(|r| r.iter().find(|t| t.pass == "total").map(|t| t.ms)).collect();
     let get = |p: &str| passes.iter().find(|t| t.pass == p).map(|t| t.ms).unwrap_or(0.0);
@@ -442,8 +458,8 @@ pub fn read_results(path: &Path) -> Result<Results> {
 /// The results as Markdown tables (for docs/benchmarks.md).
 pub fn summary(r: &Results) -> String {
     let mut s = format!(
-        "Device: {} ({}). {} warm-up and {} timed frames per configuration (median; frame min–max \
-         shown). Image reference: path traced, 1 bounce, {} spp.\n\n",
+        "Device: {} ({}). {} warm-up and {} timed frames per configuration, at least 0.5 s and 0.25 s \
+         of them (median; frame min–max shown). Image reference: path traced, 1 bounce, {} spp.\n\n",
         r.device, r.driver, r.warmup, r.frames, r.reference_spp
     );
     for reference in &r.references {

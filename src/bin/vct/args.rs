@@ -259,6 +259,24 @@ impl SceneArgs {
         self.warp.end_slope()
     }
 
+    /// The render options these arguments set, shared by `render` and `view`; the GI scale and
+    /// its accumulation are left to each (their defaults differ).
+    pub fn render_options(&self) -> Result<vct::render::RenderOptions> {
+        Ok(vct::render::RenderOptions {
+            method: self.method.method()?,
+            resolution: self.method.res()?,
+            dims: self.method.dims,
+            follow: self.follow(),
+            warp: self.warp(),
+            inject_texels: self.inject_texels,
+            work: self.work.work(),
+            storage: self.method.storage(),
+            bricks: self.method.bricks,
+            reduced_specular: self.gi_specular == SpecularArg::Reduced,
+            ..Default::default()
+        })
+    }
+
     pub fn load(&self) -> Result<Scene> {
         let mut scene = load_scene(self.scene.as_deref())?;
         scene.set_size(self.width, self.height)?;

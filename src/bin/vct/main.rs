@@ -71,22 +71,14 @@ fn render(args: RenderArgs) -> Result<()> {
         TracingArg::Deferred => Tracing::Deferred,
     };
     let mut options = RenderOptions {
-        method: args.scene.method.method()?,
         resolution: if auto { None } else { args.scene.method.res()? },
-        dims: args.scene.method.dims,
         view: args.view,
         gi: !args.no_gi,
         tracing,
-        follow: args.scene.follow(),
-        warp: args.scene.warp(),
-        inject_texels: args.scene.inject_texels,
-        work: args.scene.work.work(),
-        storage: args.scene.method.storage(),
-        bricks: args.scene.method.bricks,
         gi_scale: args.scene.gi_scale.unwrap_or(1),
         gi_accumulate: args.scene.gi_accumulate == Some(OnOff::On),
-        reduced_specular: args.scene.gi_specular == SpecularArg::Reduced,
         reuse_volume: args.reuse_volume == OnOff::On,
+        ..args.scene.render_options()?
     };
     let mut choice = None;
     if auto {
@@ -262,24 +254,14 @@ fn view(args: ViewArgs) -> Result<()> {
     let report = vct::viewer::run(vct::viewer::ViewerOptions {
         scene,
         render: RenderOptions {
-            method: args.scene.method.method()?,
-            resolution: args.scene.method.res()?,
-            dims: args.scene.method.dims,
-            follow: args.scene.follow(),
-            warp: args.scene.warp(),
-            inject_texels: args.scene.inject_texels,
-            work: args.scene.work.work(),
-            storage: args.scene.method.storage(),
-            bricks: args.scene.method.bricks,
             // The viewer's defaults, from the frame time against FLIP chart (docs/benchmarks.md,
             // "Diffuse cones at a reduced resolution"): a tenth of the shading time of full
             // resolution at 1280x720, and a still view converges to full resolution.
             gi_scale: args.scene.gi_scale.unwrap_or(4),
             gi_accumulate: args.scene.gi_accumulate.map_or(args.scene.gi_scale != Some(1), |a| a == OnOff::On),
-            reduced_specular: args.scene.gi_specular == SpecularArg::Reduced,
             // A static scene's volume is built again only when the lights, grid or GI change.
             reuse_volume: true,
-            ..Default::default()
+            ..args.scene.render_options()?
         },
         vsync: args.vsync == OnOff::On,
         overlay: args.overlay == OnOff::On,
