@@ -113,6 +113,44 @@ fn quick_bench_writes_csv_json_and_charts() {
     }
     // The reference was cached beside the run: a second run would not path-trace again.
     assert!(std::fs::read_dir(out.parent().unwrap().join("cache")).unwrap().count() >= 2);
+    replot_draws_what_a_results_file_holds_and_refuses_an_empty_one(&out, &json);
+}
+
+/// `vct bench --replot DIR` reads a results file a user may hand it: one configuration draws
+/// what it can, and one without any is an error naming the file, within seconds (an empty
+/// series once made plotters search for axis ticks forever).
+fn replot_draws_what_a_results_file_holds_and_refuses_an_empty_one(out: &std::path::Path, json: &serde_json::Value) {
+    let replot = |name: &str, keep: usize| {
+        let dir = out.parent().unwrap().join(name);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut j = json.clone();
+        for key in ["rows", "density_sweep", "gi_scale_sweep"] {
+            j[key].as_array_mut().unwrap().truncate(keep);
+        }
+        std::fs::write(dir.join("results.json"), serde_json::to_string(&j).unwrap()).unwrap();
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
+            .args(["bench", "--replot", dir.to_str().unwrap()])
+            .stderr(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let started = std::time::Instant::now();
+        while child.try_wait().unwrap().is_none() {
+            if started.elapsed().as_secs() > 60 {
+                child.kill().unwrap();
+                panic!("replot of {name} still running after 60 s");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        let o = child.wait_with_output().unwrap();
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned(), dir)
+    };
+    let (code, err, dir) = replot("one-row", 1);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(dir.join("speed_vs_accuracy.png").exists());
+    let (code, err, _) = replot("no-rows", 0);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("no-rows/results.json") && err.contains("no configuration"), "{err}");
 }
 
 /// Issue "detail where the camera is": `vct bench --accuracy --layouts` measures each scene on

@@ -51,8 +51,23 @@ fn colour_of(voxelizer: &str) -> RGBColor {
 
 type DrawResult<DB> = std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
+/// The finite values' range, padded by a tenth of its span (at least 1e-3 each side); 0..1
+/// where no value is finite. Plotters searches for ticks forever in an infinite range.
+fn lin_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) =
+        values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    if !lo.is_finite() {
+        return 0.0..1.0;
+    }
+    let pad = ((hi - lo) * 0.1).max(1e-3);
+    lo - pad..hi + pad
+}
+
+/// The positive finite values' range, widened ×0.7 and ×1.4 for a log axis; 0.1..1 where there
+/// is none.
 fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = values.filter(|v| *v > 0.0).fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+    let (lo, hi) =
+        values.filter(|v| *v > 0.0 && v.is_finite()).fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
     if lo.is_finite() {
         lo * 0.7..hi * 1.4
     } else {
@@ -190,14 +205,12 @@ fn scatter_panel<DB: DrawingBackend>(
     higher_is_better: bool,
 ) -> DrawResult<DB> {
     let pts: Vec<(f64, f64)> = r.rows.iter().map(|x| (x.total_ms, value(x))).collect();
-    let (ylo, yhi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
-    let pad = ((yhi - ylo) * 0.1).max(1e-3);
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(60)
-        .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), (ylo - pad)..(yhi + pad))?;
+        .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), lin_range(pts.iter().map(|p| p.1)))?;
     chart.configure_mesh().x_desc("frame GPU ms (log)").y_desc(y_desc).draw()?;
     let front = pareto(&pts, higher_is_better);
     chart
@@ -410,11 +423,9 @@ pub fn storage_regimes(r: &Results) -> Vec<Regime> {
 
 fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) -> DrawResult<DB> {
     root.fill(&WHITE)?;
-    let pts = || g.series.iter().flat_map(|s| s.points.iter().copied());
-    if pts().all(|p| !(p.0.is_finite() && p.1.is_finite())) {
-        // No finite point gives no range to draw (plotters would search for ticks forever).
-        return Err(plotters::drawing::DrawingAreaErrorKind::LayoutError);
-    }
+    // Only finite points set the ranges (draw_named draws none without one): plotters searches
+    // for ticks forever in an infinite range.
+    let pts = || g.series.iter().flat_map(|s| s.points.iter().copied()).filter(|p| p.0.is_finite() && p.1.is_finite());
     let (xlo, xhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.0), h.max(p.0)));
     let (ylo, yhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
     let pad = ((yhi - ylo) * 0.1).max(1e-3);
@@ -481,6 +492,9 @@ pub fn draw_regime(dir: &Path, g: &Regime) -> Result<Vec<PathBuf>> {
 /// A regime's chart as `<stem>.png` and `.svg` in `dir`.
 pub fn draw_named(dir: &Path, stem: &str, g: &Regime) -> Result<Vec<PathBuf>> {
     ensure_font()?;
+    if !g.series.iter().flat_map(|s| &s.points).any(|p| p.0.is_finite() && p.1.is_finite()) {
+        return Ok(Vec::new()); // nothing measured to draw (e.g. a sweep without its scale-1 rows)
+    }
     let path = dir.join(stem);
     let err = |m: String| Error::input(&path, format!("drawing the chart: {m}"));
     regime_chart(BitMapBackend::new(&path.with_extension("png"), (900, 560)).into_drawing_area(), g)
@@ -518,14 +532,12 @@ fn accuracy_chart<DB: DrawingBackend>(
         let mine: Vec<&AccuracyRow> = rows.iter().filter(|r| r.scene == *scene).collect();
         let x = |r: &AccuracyRow| if cost == Cost::Time { r.frame_ms } else { r.memory_mib };
         let pts: Vec<(f64, f64)> = mine.iter().map(|r| (x(r), r.flip as f64)).collect();
-        let (ylo, yhi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
-        let pad = ((yhi - ylo) * 0.1).max(1e-3);
         let mut chart = ChartBuilder::on(area)
             .caption(format!("{scene}: FLIP against the path tracer"), ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(60)
-            .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), (ylo - pad)..(yhi + pad))?;
+            .build_cartesian_2d(log_range(pts.iter().map(|p| p.0)).log_scale(), lin_range(pts.iter().map(|p| p.1)))?;
         let x_desc = if cost == Cost::Time { "frame GPU ms (log)" } else { "volume memory, MiB (log)" };
         chart.configure_mesh().x_desc(x_desc).y_desc("FLIP (lower is better)").draw()?;
         let front = pareto(&pts, false);

@@ -452,7 +452,12 @@ pub fn write(dir: &Path, results: &Results, before: Option<&Results>) -> Result<
 /// Reads a results.json written by [`write`].
 pub fn read_results(path: &Path) -> Result<Results> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
-    serde_json::from_str(&text).map_err(|e| Error::input(path, format!("not a vct results file: {e}")))
+    let r: Results =
+        serde_json::from_str(&text).map_err(|e| Error::input(path, format!("not a vct results file: {e}")))?;
+    if r.rows.is_empty() {
+        return Err(Error::input(path, "the run measured no configuration: nothing to draw".to_string()));
+    }
+    Ok(r)
 }
 
 /// The results as Markdown tables (for docs/benchmarks.md).
