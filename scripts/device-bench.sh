@@ -10,7 +10,8 @@ f=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 [ -e $f ] && export VK_DRIVER_FILES=$f
 [ -e ../shared/scenes/sponza/sponza.obj ] || ln -sfn "$R/.gpu/shared" ../shared
 cp .gpu/cache/* $W/acc/cache/ 2>/dev/null
-mkdir -p /usr/share/fonts/truetype/dejavu && cp -n .gpu/fonts/DejaVuSans.ttf /usr/share/fonts/truetype/dejavu/
+f=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+[ -e $f ] || { mkdir -p "$(dirname $f)" && cp .gpu/fonts/DejaVuSans.ttf $f; }
 export XDG_RUNTIME_DIR=/tmp
 nvidia-smi -L; nvidia-smi --query-gpu=driver_version,clocks.sm,clocks.max.sm --format=csv
 T0=$(date +%s); B=${BUDGET:-330}
