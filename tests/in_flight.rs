@@ -8,7 +8,7 @@
 mod common;
 
 use common::difference;
-use vct::gpu::{Context, ContextOptions, FrameRing};
+use vct::gpu::{ContextOptions, FrameRing};
 use vct::render::{RenderOptions, Renderer};
 use vct::scene::Scene;
 
@@ -16,9 +16,7 @@ use vct::scene::Scene;
 fn two_headless_frames_in_flight_match_frames_waited_for() {
     // The layer checks between submissions only when asked (Vulkan SDK 1.3.239: an alpha check).
     std::env::set_var("VK_LAYER_ENABLES", "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT");
-    std::env::set_var("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()));
-    let _ = env_logger::builder().is_test(true).filter_level(log::LevelFilter::Warn).try_init();
-    let ctx = Context::new(&ContextOptions { validation: true, sync_validation: true, ..Default::default() }).unwrap();
+    let ctx = common::context_with(ContextOptions { validation: true, sync_validation: true, ..Default::default() });
     let mut scene = Scene::embedded_default().unwrap();
     scene.set_size(Some(96), Some(96)).unwrap();
     let options = RenderOptions {

@@ -427,14 +427,12 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
     // for ticks forever in an infinite range.
     let pts = || g.series.iter().flat_map(|s| s.points.iter().copied()).filter(|p| p.0.is_finite() && p.1.is_finite());
     let (xlo, xhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.0), h.max(p.0)));
-    let (ylo, yhi) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
-    let pad = ((yhi - ylo) * 0.1).max(1e-3);
     fn builder<'a, 'b, DB: DrawingBackend>(area: &'a DrawingArea<DB, Shift>, title: &str) -> ChartBuilder<'a, 'b, DB> {
         let mut b = ChartBuilder::on(area);
         b.caption(title, ("sans-serif", 20)).margin(12).x_label_area_size(40).y_label_area_size(60);
         b
     }
-    let yr = (ylo - pad)..(yhi + pad);
+    let yr = lin_range(pts().map(|p| p.1));
     macro_rules! body {
         ($chart:expr) => {{
             let mut chart = $chart;
@@ -472,7 +470,7 @@ fn regime_chart<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Regime) ->
             .collect()
     };
     let xp = ((xhi - xlo) * 0.05).max(1e-3);
-    let ylog = (ylo.max(1e-9) * 0.7)..(yhi * 1.4);
+    let ylog = log_range(pts().map(|p| p.1));
     match (g.log_x, g.log_y) {
         (true, true) => body!(builder(&root, &g.title)
             .build_cartesian_2d((xlo * 0.8..xhi * 1.25).log_scale().with_key_points(xs()), ylog.log_scale())?),

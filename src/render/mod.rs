@@ -555,15 +555,22 @@ impl Renderer {
     /// as the viewer runs them). Returns the GPU times of the frame two before, which the ring
     /// has seen finish (empty for the first two frames).
     pub fn submit_in_flight(&self, ring: &mut gpu::FrameRing) -> Result<Vec<Timing>> {
-        let (mut settled, mut bricks) = (Ok(Vec::new()), Ok(()));
-        ring.frame(|cmd| {
-            settled = self.settled_timings();
-            bricks = self.voxels.bricks.check_settled();
-            self.update_uniforms();
-            self.record(cmd);
-        })?;
+        let mut settled = (Ok(Vec::new()), Ok(()));
+        ring.frame(|cmd| settled = self.record_in_flight(cmd))?;
         self.frame_recorded();
-        bricks?;
+        settled.1?;
+        settled.0
+    }
+
+    /// Records one frame while earlier ones may still run (the viewer's swapchain, or
+    /// [`Self::submit_in_flight`]): first reads what the frame before the last left, which the
+    /// caller's fence has seen finish — its GPU times, and whether its bricks fitted the pool —
+    /// then uploads this frame's uniforms and records it. Call [`Self::frame_recorded`] once
+    /// it is submitted.
+    pub fn record_in_flight(&self, cmd: vk::CommandBuffer) -> (Result<Vec<Timing>>, Result<()>) {
+        let settled = (self.settled_timings(), self.voxels.bricks.check_settled());
+        self.update_uniforms();
+        self.record(cmd);
         settled
     }
 

@@ -488,11 +488,8 @@ impl App {
         let extent = r.swapchain.extent;
         let outcome = r.swapchain.frame(|cmd, image| {
             // The frame before the last may still run: read what the one before it left.
-            timings = renderer.settled_timings();
-            bricks = renderer.voxels.bricks.check_settled();
+            (timings, bricks) = renderer.record_in_flight(cmd);
             recorded = true;
-            renderer.update_uniforms();
-            renderer.record(cmd);
             match overlay {
                 Some(o) => {
                     o.record(cmd);

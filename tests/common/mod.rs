@@ -11,10 +11,15 @@ use vct::scene::Scene;
 
 /// A context with the validation layer on (every test asks for it).
 pub fn context() -> Arc<Context> {
+    context_with(ContextOptions { validation: true, ..Default::default() })
+}
+
+/// A context with these options (validation on or off as they say).
+pub fn context_with(options: ContextOptions) -> Arc<Context> {
     std::env::set_var("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()));
     // Validation messages go through `log`: show them with the failing test's output.
     let _ = env_logger::builder().is_test(true).filter_level(log::LevelFilter::Warn).try_init();
-    Context::new(&ContextOptions { validation: true, ..Default::default() }).expect("Vulkan context with validation")
+    Context::new(&options).expect("Vulkan context")
 }
 
 /// Fails the test if the validation layer said anything.
