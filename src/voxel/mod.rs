@@ -5,6 +5,7 @@
 
 pub mod binvox;
 pub mod bricks;
+pub mod clipmap;
 pub mod grid;
 pub mod headless;
 pub mod occupied;
