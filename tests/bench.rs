@@ -165,7 +165,7 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
     let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
     // Per embedded scene: its fitted grid, then the two warps.
     let variants: Vec<&str> = rows.iter().map(|r| r[col("variant")]).collect();
-    assert!(!variants.is_empty() && variants.len() % 3 == 0, "{csv}");
+    assert!(!variants.is_empty() && variants.len().is_multiple_of(3), "{csv}");
     for v in variants.chunks(3) {
         assert_eq!(v, ["\"default\"", "\"warp function 0.5\"", "\"warp function 0.25\""], "{csv}");
     }

@@ -18,7 +18,7 @@ fn points(density: f32) -> VoxelizeMethod {
 }
 
 fn unit_grid(n: u32) -> VoxelGrid {
-    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default() }
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default(), clip: None }
 }
 
 #[test]

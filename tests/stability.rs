@@ -3,7 +3,9 @@
 
 mod common;
 
-use vct::bench::stability::{flicker, leak, raster_cracks, self_illumination_ratio, subvoxel_triangles, Motion};
+use vct::bench::stability::{
+    flicker, leak, raster_cracks, self_illumination_ratio, subvoxel_triangles, Layout, Motion,
+};
 use vct::scene::file::GiFile;
 
 #[test]
@@ -62,20 +64,27 @@ fn snapping_and_temporal_filtering_calm_a_sliding_volume() {
     let mean = |pts: Vec<(f64, f64)>| pts.iter().map(|p| p.1).sum::<f64>() / pts.len() as f64;
     let sliding = |snap| Motion::Volume { snap };
     let full = (1, false);
-    let free = mean(flicker(&ctx, sliding(false), 1.0, full, None, 12).unwrap());
-    let snapped = mean(flicker(&ctx, sliding(true), 1.0, full, None, 12).unwrap());
-    let filtered = mean(flicker(&ctx, sliding(false), 0.2, full, None, 12).unwrap());
+    let free = mean(flicker(&ctx, sliding(false), 1.0, full, Layout::Even, 12).unwrap());
+    let snapped = mean(flicker(&ctx, sliding(true), 1.0, full, Layout::Even, 12).unwrap());
+    let filtered = mean(flicker(&ctx, sliding(false), 0.2, full, Layout::Even, 12).unwrap());
     // The thesis (§5.2.4): a warp's texels change size as the camera moves, and no step keeps
     // them all in place, so snapping cannot calm a warped volume.
-    let warp = Some(vct::voxel::warp::THESIS_END_SLOPE);
+    let warp = Layout::Warped(vct::voxel::warp::THESIS_END_SLOPE);
     let warped = mean(flicker(&ctx, sliding(true), 1.0, full, warp, 12).unwrap());
+    let clipmap = mean(flicker(&ctx, sliding(true), 1.0, full, Layout::Clipmap(3), 12).unwrap());
     println!(
-        "indirect change per frame (%): free {free:.3}, snapped {snapped:.3}, temporal 0.2 {filtered:.3}, snapped and warped {warped:.3}"
+        "indirect change per frame (%): free {free:.3}, snapped {snapped:.3}, temporal 0.2 {filtered:.3}, snapped and warped {warped:.3}, clipmap {clipmap:.3}"
     );
     assert!(free > 0.5, "a sliding unsnapped volume should flicker: {free}%");
     assert!(snapped < free / 2.0, "snapping should calm it: {snapped} vs {free}");
     assert!(filtered < free, "temporal filtering should calm it: {filtered} vs {free}");
     assert!(warped > 2.0 * snapped, "a warp following the point should flicker, snapped or not: {warped} vs {snapped}");
+    // Clipmap levels, each snapped to its own voxel, hold the whole room as the finest slides:
+    // calmer than the one snapped volume, which the room's far side leaves and enters.
+    assert!(
+        clipmap < snapped,
+        "snapped clipmap levels should flicker less than one snapped volume: {clipmap} vs {snapped}"
+    );
     common::assert_clean(&ctx);
 }
 

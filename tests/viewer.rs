@@ -75,6 +75,13 @@ fn a_warped_grid_in_the_viewer_matches_the_headless_render() {
     viewer_matches_headless("warped", &[], &["--warp", "function"]);
 }
 
+/// Issue "detail where the camera is": the viewer recentres clipmap levels on the camera every
+/// frame; a still camera's frame is the headless render's.
+#[test]
+fn clipmap_levels_in_the_viewer_match_the_headless_render() {
+    viewer_matches_headless("clipmap", &[], &["--clipmap", "3"]);
+}
+
 /// Issue "frame time": the viewer keeps two frames in flight (the CPU records one while the GPU
 /// runs the one before, which still reads the shared volumes and per-frame buffers), and
 /// synchronization validation finds no hazard between them or within one.

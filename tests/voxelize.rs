@@ -22,7 +22,7 @@ fn no_msaa() -> VoxelizeMethod {
 
 /// A grid of unit voxels from the origin.
 fn unit_grid(n: u32) -> VoxelGrid {
-    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default() }
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default(), clip: None }
 }
 
 fn accuracy(scene: &Scene, run: &VoxelRun) -> Accuracy {

@@ -35,7 +35,13 @@ fn run(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGri
 
 #[test]
 fn warped_voxelization_is_exact_in_warped_space() {
-    let even = VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(32), warp: Default::default() };
+    let even = VoxelGrid {
+        origin: Vec3::ZERO,
+        voxel: 1.0,
+        dims: glam::UVec3::splat(32),
+        warp: Default::default(),
+        clip: None,
+    };
     // Off-centre along every axis, so each axis has its own two halves.
     let warped = even.warped(v(9.0, 21.0, 14.5), 0.25).unwrap();
     let probes: [(&str, Vec<[Vec3; 3]>); 3] = [
@@ -79,7 +85,13 @@ fn warped_cornell_box_is_exact_in_warped_space() {
 fn the_grid_and_the_reference_place_warped_texels_alike() {
     // The renderer's warp (Newton's method) and the reference's (bisection of the thesis'
     // printed cubic) put every face of a 64-texel axis at the same place.
-    let even = VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(64), warp: Default::default() };
+    let even = VoxelGrid {
+        origin: Vec3::ZERO,
+        voxel: 1.0,
+        dims: glam::UVec3::splat(64),
+        warp: Default::default(),
+        clip: None,
+    };
     let grid = even.warped(v(50.0, 3.0, 32.0), 0.1).unwrap();
     let faces = RefGrid::matching(&grid).faces();
     for (i, x) in faces[0].iter().enumerate().step_by(7) {

@@ -248,11 +248,106 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
     return finish(m);
 }
 
+#ifdef VCT_FRAME_GLSL
+// A clipmap's cone (voxel::clipmap; Wicked Engine's VXGI): the cone marches in grid coordinates
+// (voxels of level 0), and each sample reads the finest level that holds it with its filter's
+// half texel to spare, at the mip that matches its footprint in that level's texels. So near the
+// camera a narrow cone reads fine voxels, and as it widens or leaves a level it moves out to
+// coarser ones. Within the blend band of a level's border (CLIP_BLEND_BAND of its side) the
+// sample is blended linearly into the next level's, which it reaches fully at the border, so
+// the doubling of the voxel there shows no seam. A sample is clamped inside its level's slab of
+// the stack along z (half a texel of the mips it filters), so the filter never reads a
+// neighbouring level.
+
+// Where in level k a sample at grid point `g` of a cone `diameter` voxels of level 0 wide,
+// `height` voxels of level 0 above its surface's plane, reads: texture coordinates `pos` and mip
+// `level` (of level k's texels). Returns how far the filter's support lies inside the level's
+// box (voxels of level 0; negative: it reaches out); `half_texel` is the filter's half texel.
+float clip_place(vec3 g, float diameter, float height, int k, ConeParams p, out vec3 pos, out float level,
+                 out float half_texel) {
+    float s = frame.clip_levels[k].w;
+    float l = log2(max(diameter / s, 1.0)) + p.lod_offset;
+    if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) l = min(l, self_clamp_level(height / s, p.surface));
+    level = clamp(l, 0.0, p.max_level);
+    half_texel = 0.5 * exp2(level) * s;
+    vec3 t = clip_texel(g, k);
+    float n = frame.clip.y, slab = float(k) * n;
+    // Below level 1 level 0 is blended with level 1, whose texels are two wide.
+    float h = 0.5 * exp2(max(ceil(level), 1.0));
+    t.z = clamp(t.z, slab + h, slab + n - h);
+    pos = t / frame.voxel_dims.xyz;
+    return clip_inside(g, k) - half_texel;
+}
+
+// One sample of the volume at `pos` and `level`: below level 1 level 0 blended with level 1, as
+// march_iso and march_aniso read it.
+vec4 clip_read(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D atlas, bool aniso, vec3 pos, float level,
+               vec3 dir, vec3 w, vec3 chains, ConeParams p) {
+    bool face = (p.flags & CONE_FLAG_FACING) != 0u;
+    vec4 mo = face ? sample_moment(moment, pos, level) : vec4(0.0);
+    float upper_level = max(level, 1.0);
+    vec4 upper;
+    if (aniso) {
+        upper = sample_chains(atlas, pos, w, chains, upper_level, face ? facing_across(mo, dir) : vec3(1.0), p.atlas);
+    } else {
+        upper = textureLod(chain, pos, upper_level - 1.0 + p.chain_base);
+        if (face) upper.rgb *= facing(mo, dir);
+    }
+    if (level >= 1.0) return upper;
+    vec4 iso = level0_sample(volume, pos);
+    if (face) iso.rgb *= facing(mo, dir);
+    return mix(iso, upper, level);
+}
+
+vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw,
+                vec3 normal, vec3 dir, float tan_half, ConeParams p) {
+    int levels = clip_levels();
+    vec3 g0 = uvw * frame.clip.y;
+    // The start offsets are in texels of the finest level where the cone starts (at_start).
+    float s0 = frame.clip_levels[clip_level_of(g0)].w;
+    float bias = p.bias * s0;
+    vec3 start = g0 + bias * normal;
+    float rise = dot(dir, normal);
+    bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
+    vec3 w = dir * dir;
+    vec3 chains = vec3(0.0, 2.0, 4.0) + vec3(lessThan(dir, vec3(0.0)));
+    March m = March(vec3(0.0), 0.0, p.start * s0);
+    for (int i = 0; i < p.steps && m.alpha < 0.95; i++) {
+        vec3 g = start + m.dist * dir;
+        float diameter = 2.0 * m.dist * tan_half, height = bias + m.dist * rise;
+        vec3 pos;
+        float level, half_texel;
+        int k = 0;
+        float room = clip_place(g, diameter, height, 0, p, pos, level, half_texel);
+        while (room < 0.0 && k + 1 < levels) room = clip_place(g, diameter, height, ++k, p, pos, level, half_texel);
+        // Left the coarsest level: its filter no longer reaches inside (as next_sample).
+        if (room <= -2.0 * half_texel) break;
+        float s = frame.clip_levels[k].w;
+        vec4 sample_k = clip_read(volume, chain, moment, atlas, aniso, pos, level, dir, w, chains, p);
+        float band = frame.clip.z * frame.clip.y * s;
+        if (k + 1 < levels && room < band) {
+            vec3 pos2;
+            float level2, half2;
+            clip_place(g, diameter, height, k + 1, p, pos2, level2, half2);
+            vec4 outer = clip_read(volume, chain, moment, atlas, aniso, pos2, level2, dir, w, chains, p);
+            sample_k = mix(sample_k, outer, 1.0 - clamp(room / band, 0.0, 1.0));
+        }
+        // The step and the opacity correction in level k's texels (exp2(level) * s voxels of
+        // level 0).
+        accumulate(m, sample_k, level + log2(s), p.step * exp2(level) * s, correct);
+    }
+    return finish(m);
+}
+#endif
+
 // Returns accumulated radiance (rgb, premultiplied) and opacity (a). With `aniso` the
 // directional chains of `atlas` are sampled above level 0; otherwise the isotropic `chain` (the
 // thesis). `volume` holds level 0. `tan_half`: tangent of the cone's half aperture.
 vec4 trace_cone_filtered(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw,
                          vec3 normal, vec3 dir, float tan_half, ConeParams p) {
+#ifdef VCT_FRAME_GLSL
+    if (clip_on()) return march_clip(volume, chain, moment, atlas, aniso, uvw, normal, dir, tan_half, p);
+#endif
     if (aniso) return march_aniso(volume, moment, atlas, uvw, normal, dir, tan_half, at_start(p, uvw, normal));
     return march_iso(volume, chain, moment, uvw, normal, dir, tan_half, at_start(p, uvw, normal));
 }

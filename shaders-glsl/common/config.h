@@ -121,5 +121,17 @@
 // The specialization constant WARPED (common/warp.glsl) of every pipeline: whether the grid is
 // warped (gpu::pipeline::Stage::warped). Above every other constant id a shader declares.
 #define WARP_CONSTANT_ID 16
+// The specialization constant CLIPPED (common/frame.glsl): whether the volume is a clipmap's stack
+// of levels (voxel::clipmap; gpu::pipeline::GridSpec).
+#define CLIP_CONSTANT_ID 17
+
+// Most levels of a clipmap (voxel::clipmap): the stack's z extent is levels * res <= 4096, the
+// occupied list's 12 bits of z (common/occupied.glsl).
+#define MAX_CLIP_LEVELS 8
+// A cone sample within this share of a clipmap level's side of its border (after its own
+// filter's half texel) blends linearly into the next level, so the switch of voxel size shows no
+// seam (common/cone.glsl, march_clip). An eighth of the side: at N = 64, 8 texels of the level,
+// 4 of the next.
+#define CLIP_BLEND_BAND 0.125
 
 #endif

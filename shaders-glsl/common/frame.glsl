@@ -38,15 +38,67 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
                              // frame; z: a history to accumulate with (1) or none (0);
                              // w: the camera moved since the last frame (1)
     vec4 voxel_warp;         // the grid's warp (common/warp.glsl): xyz centre, w end slope (1: none)
+    vec4 clip;               // a clipmap (voxel::clipmap): x levels (0: none), y a level's side (texels),
+                             // z the blend band (of a level's side)
+    vec4 clip_levels[MAX_CLIP_LEVELS]; // each level's minimum corner (xyz, voxels of level 0 from
+                                       // voxel_origin) and its voxel over level 0's (w)
 } frame;
+
+// Whether the pipeline was built for a clipmap (voxel::clipmap): off, every clip_on() is false at
+// compile time and the clipmap's code is compiled out.
+layout(constant_id = CLIP_CONSTANT_ID) const bool CLIPPED = false;
+
+// A clipmap's levels are stacked along z, level k in texels k N .. (k + 1) N; level k's voxel
+// is 2^k of level 0's, and "grid coordinates" are voxels of level 0 from its corner, unbounded
+// (the coarser levels reach beyond level 0 on every side).
+bool clip_on() {
+    return CLIPPED && frame.clip.x > 0.5;
+}
+
+int clip_levels() {
+    return int(frame.clip.x);
+}
+
+// How far grid point `g` lies inside level k's box (voxels of level 0; negative outside).
+float clip_inside(vec3 g, int k) {
+    vec4 l = frame.clip_levels[k];
+    vec3 lo = g - l.xyz, hi = l.xyz + l.w * frame.clip.y - g;
+    return min(min(min(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
+}
+
+// The finest level whose box holds grid point `g` (the coarsest if none does).
+int clip_level_of(vec3 g) {
+    int k = 0;
+    while (k + 1 < clip_levels() && clip_inside(g, k) < 0.0) k++;
+    return k;
+}
+
+// Grid point `g` in level k's slab of the stack (texel coordinates).
+vec3 clip_texel(vec3 g, int k) {
+    vec4 l = frame.clip_levels[k];
+    return (g - l.xyz) / l.w + vec3(0.0, 0.0, float(k) * frame.clip.y);
+}
+
+// Whether texel `v` lies in level k's slab.
+bool clip_in_level(ivec3 v, int k) {
+    int n = int(frame.clip.y);
+    return all(greaterThanEqual(v, ivec3(0, 0, k * n))) && all(lessThan(v, ivec3(n, n, (k + 1) * n)));
+}
+
+// The extent a cone's march fraction is of: the grid's, or a clipmap's level 0.
+vec3 march_dims() {
+    return clip_on() ? vec3(frame.clip.y) : frame.voxel_dims.xyz;
+}
 
 // World position to unwarped grid coordinates (voxels of the even grid).
 vec3 world_to_grid(vec3 p) {
     return (p - frame.voxel_origin.xyz) / frame.voxel_origin.w;
 }
 
-// Grid coordinates to texel coordinates (texel v spans [v, v + 1)), through the warp if any.
+// Grid coordinates to texel coordinates (texel v spans [v, v + 1)), through the warp if any; in
+// a clipmap, in the finest level that holds them.
 vec3 grid_to_texel(vec3 g) {
+    if (clip_on()) return clip_texel(g, clip_level_of(g));
     if (!warp_on(frame.voxel_warp)) return g;
     return warp_forward(g / frame.voxel_dims.xyz, frame.voxel_warp) * frame.voxel_dims.xyz;
 }
@@ -64,18 +116,23 @@ vec3 world_to_uvw(vec3 p) {
 // World position to the unwarped grid fraction [0, 1]^3 a cone marches in (common/cone.glsl
 // warps each sample).
 vec3 world_to_march(vec3 p) {
-    return world_to_grid(p) / frame.voxel_dims.xyz;
+    return world_to_grid(p) / march_dims();
 }
 
 // The grid fraction of texel `v`'s centre.
 vec3 texel_centre_march(ivec3 v) {
+    if (clip_on()) {
+        int k = v.z / int(frame.clip.y);
+        vec4 l = frame.clip_levels[k];
+        return (l.xyz + (vec3(v - ivec3(0, 0, k * int(frame.clip.y))) + 0.5) * l.w) / frame.clip.y;
+    }
     vec3 w = (vec3(v) + 0.5) / frame.voxel_dims.xyz;
     return warp_on(frame.voxel_warp) ? warp_inverse(w, frame.voxel_warp) : w;
 }
 
 // The world position of texel `v`'s centre.
 vec3 texel_centre_world(ivec3 v) {
-    return frame.voxel_origin.xyz + texel_centre_march(v) * frame.voxel_dims.xyz * frame.voxel_origin.w;
+    return frame.voxel_origin.xyz + texel_centre_march(v) * march_dims() * frame.voxel_origin.w;
 }
 
 // Texels per grid voxel where they are finest (1 unwarped).

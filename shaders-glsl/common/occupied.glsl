@@ -1,5 +1,6 @@
 // The compact list of occupied voxels (voxel::occupied; OPEngine's sparse voxel list): a count
-// and the packed coordinates (x | y << 10 | z << 20) of every occupied voxel, appended by the
+// and the packed coordinates (x | y << 10 | z << 20: 10 bits each for x and y, 12 for z, which a
+// clipmap's stack of levels needs) of every occupied voxel, appended by the
 // voxelizers on a voxel's first write (voxel.glsl), so that passes over voxels run one
 // invocation per occupied voxel (dispatched indirectly) instead of one per voxel of the grid.
 // The mip levels' lists of occupied texels (gi/parents.comp) have the same layout.
@@ -21,7 +22,7 @@ uint pack_voxel(ivec3 v) {
 }
 
 ivec3 unpack_voxel(uint p) {
-    return ivec3(p & 1023u, (p >> 10) & 1023u, (p >> 20) & 1023u);
+    return ivec3(p & 1023u, (p >> 10) & 1023u, p >> 20);
 }
 
 #endif

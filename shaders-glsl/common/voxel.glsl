@@ -8,7 +8,8 @@
 
 layout(set = 2, binding = 0) uniform VoxelParams {
     vec4 origin_size;   // xyz: grid origin (world); w: voxel edge length
-    uvec4 grid;         // x: the longest axis N (the raster framebuffer is N x N); y: flags (VOXEL_FLAG_*)
+    uvec4 grid;         // x: the longest axis N (the raster framebuffer is N x N); y: flags (VOXEL_FLAG_*);
+                        // z: the slab the grid is written to (a clipmap level's first texel along z)
     vec4 tess;          // x: tessellation level scale; y: max tessellation level; z: raster viewport scale
     uvec4 dims;         // xyz: voxels along each axis
     mat4 camera;        // world to clip: the view the point voxelizer's refinement sees
@@ -107,7 +108,9 @@ bool atomic_average(uint which, ivec3 coord, vec3 value) {
 // with sparse storage, its brick has or gets a slot).
 void write_voxel(ivec3 coord, vec3 albedo, vec3 normal, vec3 emission) {
     ivec3 t;
-    if (!in_grid(coord) || !claim_brick(coord, t)) return;
+    if (!in_grid(coord)) return;
+    coord.z += int(voxel.grid.z);
+    if (!claim_brick(coord, t)) return;
     if (atomic_average(0u, t, clamp(albedo, 0.0, 1.0))) occupied.voxels[atomicAdd(occupied.count, 1u)] = pack_voxel(coord);
     atomic_average(1u, t, normalize(normal) * 0.5 + 0.5);
     if (max(emission.r, max(emission.g, emission.b)) > 0.0) imageAtomicMax(voxel_emission, t, encode_rgb9e5(emission));

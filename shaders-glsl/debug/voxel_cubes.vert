@@ -27,7 +27,7 @@ void main() {
     p[axis] = (face % 2 == 0) ? 1.0 : 0.0;
     p[(axis + 1) % 3] = uv.x;
     p[(axis + 2) % 3] = uv.y;
-    uvec3 c = uvec3(in_coord & 1023u, (in_coord >> 10) & 1023u, (in_coord >> 20) & 1023u);
+    uvec3 c = uvec3(in_coord & 1023u, (in_coord >> 10) & 1023u, in_coord >> 20);
     vec3 world = pc.origin_size.xyz + (vec3(c) + p) * pc.origin_size.w;
     gl_Position = pc.view_proj * vec4(world, 1.0);
     vec3 albedo = vec3(float(in_color & 255u), float((in_color >> 8) & 255u), float((in_color >> 16) & 255u)) / 255.0;

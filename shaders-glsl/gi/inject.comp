@@ -45,6 +45,18 @@ vec4 unpack(uint p) {
     return vec4(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu), float(p >> 24)) / 255.0;
 }
 
+// Grid point `g` in texels of level k (k = 0: the grid).
+vec3 level_texel(vec3 g, int k) {
+    return clip_on() ? clip_texel(g, k) : grid_to_texel(g);
+}
+
+// Whether texel `u` lies in level k (k = 0: the grid).
+bool in_level(ivec3 u, int k) {
+    return clip_on() ? clip_in_level(u, k) : voxel_in_grid(u);
+}
+
+void inject_level(vec3 p, vec3 l_dir, int j, int level);
+
 void main() {
     int stride = int(push.stride);
     int j = int(push.light);
@@ -67,18 +79,26 @@ void main() {
     // four cube faces; a face wholly behind is not dispatched) find nothing to light.
     if (uint(li.position.w) == LIGHT_AREA && dot(p - li.position.xyz, li.direction.xyz) <= 0.0) return;
     vec3 l_dir = uint(li.position.w) == LIGHT_DIRECTIONAL ? li.direction.xyz : normalize(p - li.position.xyz);
-    float step = 0.25 * frame.voxel_origin.w;
+    // A clipmap's every level holding the point gets its light (a wide cone reads a coarse level
+    // where finer ones also hold the point).
+    for (int k = 0; k < (clip_on() ? clip_levels() : 1); k++) inject_level(p, l_dir, j, k);
+}
+
+// Lights the voxel of lit point `p` in level `level` (0: the grid).
+void inject_level(vec3 p, vec3 l_dir, int j, int level) {
+    float scale = clip_on() ? frame.clip_levels[level].w : 1.0;
     ivec3 v = ivec3(-1), t = ivec3(0);  // the voxel, and where it is stored
     uint a = 0u;
     // In voxel units, from a quarter voxel before the point, one voxel at a time: a step no
     // longer than a voxel cannot jump over a wall's voxel layer. Mostly two loads: the surface's
     // voxel and the empty one before it.
-    // A warped grid's texels are up to warp_peak() to a grid voxel: steps that long at most.
-    vec3 walk = l_dir / warp_peak();
+    // A warped grid's texels are up to warp_peak() to a grid voxel: steps that long at most; a
+    // clipmap level's are `scale` voxels of level 0.
+    vec3 walk = l_dir * scale / warp_peak();
     vec3 g = world_to_grid(p) - walk * 0.25;
     for (int i = 0; i <= INJECT_SEARCH_VOXELS; i++, g -= walk) {
-        ivec3 u = ivec3(floor(grid_to_texel(g)));
-        if (!voxel_in_grid(u)) break;
+        ivec3 u = ivec3(floor(level_texel(g, level)));
+        if (!in_level(u, level)) break;
         ivec3 at = stored_at(u);
         uint b = imageLoad(voxel_albedo, at).r;
         if ((b >> 24) != 0u) {
@@ -90,8 +110,8 @@ void main() {
         }
     }
     if ((a >> 24) == 0u) {
-        v = ivec3(floor(world_to_voxel(p + l_dir * step)));
-        if (!voxel_in_grid(v)) return;
+        v = ivec3(floor(level_texel(world_to_grid(p) + l_dir * 0.25 * scale, level)));
+        if (!in_level(v, level)) return;
         t = stored_at(v);
         a = imageLoad(voxel_albedo, t).r;
         if ((a >> 24) == 0u) return;

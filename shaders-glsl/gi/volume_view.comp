@@ -23,18 +23,24 @@ void main() {
     // The ray is straight in the unwarped grid; each sample is warped to its texel.
     vec3 o = world_to_march(near.xyz / near.w), e = world_to_march(far.xyz / far.w);
     vec3 d = normalize(e - o);
-    // Clip the ray to the unit cube.
+    // Clip the ray to the unit cube (a clipmap's coarsest level's box).
+    vec3 lo = vec3(0.0), hi = vec3(1.0);
+    if (clip_on()) {
+        vec4 l = frame.clip_levels[clip_levels() - 1];
+        lo = l.xyz / frame.clip.y;
+        hi = lo + l.w;
+    }
     vec3 inv = 1.0 / d;
-    vec3 t0 = (vec3(0.0) - o) * inv, t1 = (vec3(1.0) - o) * inv;
+    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
     float tmin = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
     float tmax = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
     vec3 color = vec3(0.0);
     bool radiance = uint(frame.view.x) == VIEW_RADIANCE;
     float level = radiance ? frame.view.y : 0.0;
     // Half a texel of the level along the longest axis (the finest in texture space).
-    float step = 0.5 * exp2(level) / frame.voxel_grid.x / warp_peak();
+    float step = 0.5 * exp2(level) / (clip_on() ? frame.clip.y : frame.voxel_grid.x) / warp_peak();
     for (float t = tmin; t < tmax; t += step) {
-        vec3 p = grid_to_texel((o + d * t) * frame.voxel_dims.xyz) / frame.voxel_dims.xyz;
+        vec3 p = grid_to_texel((o + d * t) * march_dims()) / frame.voxel_dims.xyz;
         if (radiance) {
             vec4 s = level < 0.5 ? level0_sample(radiance_volume, p) : textureLod(radiance_chain, p, level - 1.0);
             if (s.a > 0.3) { color = s.rgb / s.a; break; }

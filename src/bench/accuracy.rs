@@ -197,18 +197,27 @@ pub struct Variant {
     pub gi: GiFile,
     /// Warp the grid (`RenderOptions::warp`): the same voxels, finest at the camera.
     pub warp: Option<f32>,
+    /// Clipmap levels around the camera instead of the fitted grid (`RenderOptions::clipmap`),
+    /// and their voxels along each axis.
+    pub clipmap: Option<(u32, u32)>,
 }
 
 impl Variant {
     /// The scene's own model on its own grid.
     pub fn default_of(gi: &GiFile) -> Self {
-        Variant { name: "default".into(), gi: gi.clone(), warp: None }
+        Variant { name: "default".into(), gi: gi.clone(), warp: None, clipmap: None }
     }
 
     /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
     /// with end slope `s`, at the same voxel count.
     pub fn warped(gi: &GiFile, s: f32) -> Self {
-        Variant { name: format!("warp function {s}"), gi: gi.clone(), warp: Some(s) }
+        Variant { name: format!("warp function {s}"), gi: gi.clone(), warp: Some(s), clipmap: None }
+    }
+
+    /// The scene's own model on `levels` clipmap levels of `res`³ voxels around the camera
+    /// (`voxel::clipmap`, its default extent), in place of the fitted grid.
+    pub fn clipped(gi: &GiFile, levels: u32, res: u32) -> Self {
+        Variant { name: format!("clipmap {levels}x{res}"), gi: gi.clone(), warp: None, clipmap: Some((levels, res)) }
     }
 }
 
@@ -259,11 +268,12 @@ pub fn measure(
     scene.settings.gi = variant.gi.clone();
     let mut options = RenderOptions {
         method: harness_method(),
-        resolution: Some(resolution),
+        resolution: Some(variant.clipmap.map_or(resolution, |(_, res)| res)),
         warp: variant.warp,
+        clipmap: variant.clipmap.map(|(levels, _)| crate::render::ClipOptions { levels, extent: None }),
         ..Default::default()
     };
-    if variant.warp.is_some() {
+    if variant.warp.is_some() || variant.clipmap.is_some() {
         // A warp that follows the camera gets dense storage by default; this camera stands
         // still, and the brick pool the fitted grid gets here keeps the memory comparable.
         options.storage = crate::voxel::bricks::Storage::Sparse;
@@ -336,7 +346,7 @@ pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(
 /// (a staircase: every row differs from the one above by one choice), the cone sets on top of
 /// the default, and the default with each of its choices undone or changed.
 pub fn study_variants(default: &GiFile) -> Vec<Variant> {
-    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi, warp: None };
+    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi, warp: None, clipmap: None };
     // The step cap is no model choice: every variant gets the default's; nor are the lights
     // (area lights are chosen when the scene loads, and one direct frame serves all variants).
     let t =
@@ -485,7 +495,7 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
     }
     files.extend(super::charts::draw_accuracy(dir, rows, super::charts::Cost::Time)?);
     // Grids that spread the same voxels differently (--layouts): FLIP over memory too.
-    if rows.iter().any(|r| r.variant.starts_with("warp")) {
+    if rows.iter().any(|r| r.variant.starts_with("warp") || r.variant.starts_with("clipmap")) {
         files.extend(super::charts::draw_accuracy(dir, rows, super::charts::Cost::Memory)?);
     }
     Ok(files)

@@ -20,7 +20,7 @@ use serde::Serialize;
 use crate::error::Result;
 use crate::gpu::Context;
 use crate::reference::coverage::{Accuracy, RefGrid};
-use crate::render::{Follow, RenderOptions, Renderer, View};
+use crate::render::{ClipOptions, Follow, RenderOptions, Renderer, View};
 use crate::scene::file::{Filter, GiFile};
 use crate::scene::{Camera, Light, Scene};
 use crate::voxel::headless::voxelize_in;
@@ -58,7 +58,7 @@ fn recall(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: Voxel
 }
 
 fn unit_grid(n: u32) -> VoxelGrid {
-    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default() }
+    VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(n), warp: Default::default(), clip: None }
 }
 
 fn tess(subdivide: bool) -> VoxelizeMethod {
@@ -332,19 +332,31 @@ pub enum Motion {
     Camera,
 }
 
+/// How the flicker regime's volume lays out its voxels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Layout {
+    /// One grid: fitted to the scene, or the 4 m volume that slides.
+    Even,
+    /// Warped by the thesis' function with this end slope (Freed 2018 §4.6.1), its finest texels
+    /// following the moving point or camera.
+    Warped(f32),
+    /// Clipmap levels of 32³ around the moving point (the finest 4 m, as the single sliding
+    /// volume) or the camera (the coarsest holding the room).
+    Clipmap(u32),
+}
+
 /// Frame-to-frame change (mean |Δ| over the mean, %) of the indirect light of a Cornell view
 /// (direct light does not depend on the voxels) over `frames` frames under `motion`, with the
 /// diffuse cones at one pixel in `gi_scale`², accumulated over frames or not. With a moving
 /// camera the change includes the view's own; full-resolution tracing (scale 1) is the bar.
 /// Accumulation first gets gi_scale² still frames: it converges (once) before it is judged.
-/// With `warp` the grid is warped (Freed 2018 §4.6.1) with that end slope, its finest texels
-/// following the moving point or camera.
+/// `layout` spreads the voxels (`Layout`).
 pub fn flicker(
     ctx: &Arc<Context>,
     motion: Motion,
     temporal: f32,
     (gi_scale, gi_accumulate): (u32, bool),
-    warp: Option<f32>,
+    layout: Layout,
     frames: u32,
 ) -> Result<Vec<(f64, f64)>> {
     let mut scene = Scene::embedded_default()?;
@@ -356,13 +368,22 @@ pub fn flicker(
         method: VoxelizeMethod::raster(Coverage::Msaa),
         resolution: Some(32),
         view: View::Indirect,
-        follow: match motion {
-            Motion::Volume { snap } => Some(Follow { extent: 4.0, snap }),
+        follow: match (motion, layout) {
+            (_, Layout::Clipmap(_)) => None,
+            (Motion::Volume { snap }, _) => Some(Follow { extent: 4.0, snap }),
             _ => None,
         },
         gi_scale,
         gi_accumulate,
-        warp,
+        warp: match layout {
+            Layout::Warped(s) => Some(s),
+            _ => None,
+        },
+        clipmap: match (motion, layout) {
+            (Motion::Volume { .. }, Layout::Clipmap(levels)) => Some(ClipOptions { levels, extent: Some(4.0) }),
+            (_, Layout::Clipmap(levels)) => Some(ClipOptions { levels, extent: None }),
+            _ => None,
+        },
         ..Default::default()
     };
     let mut r = Renderer::new(ctx, scene, o)?;
@@ -402,28 +423,31 @@ pub fn flicker(
 /// Regime 4: temporal flicker.
 pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
     let full = (1, false);
-    let warp = Some(crate::voxel::warp::THESIS_END_SLOPE);
+    let warp = Layout::Warped(crate::voxel::warp::THESIS_END_SLOPE);
+    let even = Layout::Even;
     let configs = [
-        ("sliding volume", Motion::Volume { snap: false }, 1.0, full, None),
-        ("sliding volume, snapped", Motion::Volume { snap: true }, 1.0, full, None),
+        ("sliding volume", Motion::Volume { snap: false }, 1.0, full, even),
+        ("sliding volume, snapped", Motion::Volume { snap: true }, 1.0, full, even),
         ("sliding volume, snapped, warped", Motion::Volume { snap: true }, 1.0, full, warp),
-        ("sliding volume, temporal 0.2 (reprojected)", Motion::Volume { snap: false }, 0.2, full, None),
-        ("sliding volume, snapped, temporal 0.2", Motion::Volume { snap: true }, 0.2, full, None),
-        ("turning light", Motion::Light, 1.0, full, None),
-        ("turning light, temporal 0.2", Motion::Light, 0.2, full, None),
-        ("turning light, GI scale 2 accumulated", Motion::Light, 1.0, (2, true), None),
-        ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true), None),
-        ("orbiting camera", Motion::Camera, 1.0, full, None),
+        ("sliding clipmap, 3 levels", Motion::Volume { snap: true }, 1.0, full, Layout::Clipmap(3)),
+        ("sliding volume, temporal 0.2 (reprojected)", Motion::Volume { snap: false }, 0.2, full, even),
+        ("sliding volume, snapped, temporal 0.2", Motion::Volume { snap: true }, 0.2, full, even),
+        ("turning light", Motion::Light, 1.0, full, even),
+        ("turning light, temporal 0.2", Motion::Light, 0.2, full, even),
+        ("turning light, GI scale 2 accumulated", Motion::Light, 1.0, (2, true), even),
+        ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true), even),
+        ("orbiting camera", Motion::Camera, 1.0, full, even),
         ("orbiting camera, warped", Motion::Camera, 1.0, full, warp),
-        ("orbiting camera, GI scale 2", Motion::Camera, 1.0, (2, false), None),
-        ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true), None),
-        ("orbiting camera, GI scale 4", Motion::Camera, 1.0, (4, false), None),
-        ("orbiting camera, GI scale 4 accumulated", Motion::Camera, 1.0, (4, true), None),
+        ("orbiting camera, clipmap, 4 levels", Motion::Camera, 1.0, full, Layout::Clipmap(4)),
+        ("orbiting camera, GI scale 2", Motion::Camera, 1.0, (2, false), even),
+        ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true), even),
+        ("orbiting camera, GI scale 4", Motion::Camera, 1.0, (4, false), even),
+        ("orbiting camera, GI scale 4 accumulated", Motion::Camera, 1.0, (4, true), even),
     ];
     let series: Vec<Series> = configs
         .iter()
-        .map(|(label, motion, t, gi, warp)| {
-            Ok(Series { label: label.to_string(), points: flicker(ctx, *motion, *t, *gi, *warp, frames)? })
+        .map(|(label, motion, t, gi, layout)| {
+            Ok(Series { label: label.to_string(), points: flicker(ctx, *motion, *t, *gi, *layout, frames)? })
         })
         .collect::<Result<_>>()?;
     Ok(Regime {

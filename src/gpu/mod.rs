@@ -25,7 +25,7 @@ pub use descriptor::{Binding, DescriptorSet};
 pub use features::{Feature, FeatureSet};
 pub use frames::FrameRing;
 pub use image::{Image, ImageDesc, Sampler};
-pub use pipeline::{GraphicsDesc, Pipeline, Stage, VertexLayout};
+pub use pipeline::{GraphicsDesc, GridSpec, Pipeline, Stage, VertexLayout};
 pub use swapchain::{FrameOutcome, Swapchain};
 pub use timer::{GpuTimer, Timing};
 

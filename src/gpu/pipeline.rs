@@ -9,28 +9,37 @@ use ash::vk;
 use super::Context;
 use crate::error::{Result, VkContext};
 
+/// How the volume's texels lie, as every shader that maps world space to them is specialized:
+/// WARPED (constant WARP_CONSTANT_ID, common/warp.glsl: the grid is warped) and CLIPPED
+/// (CLIP_CONSTANT_ID, common/frame.glsl: the volume is a clipmap's stack of levels). Off, that
+/// layout's code is compiled out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GridSpec {
+    pub warped: bool,
+    pub clipped: bool,
+}
+
 /// One shader stage: SPIR-V bytes plus specialization constants (constant_id 0, 1, ...), and
-/// WARPED (constant WARP_CONSTANT_ID, common/warp.glsl: whether the grid is warped; off, the
-/// warp's code is compiled out of every shader that includes it).
+/// the grid's layout (`GridSpec`).
 #[derive(Clone, Copy)]
 pub struct Stage<'a> {
     pub stage: vk::ShaderStageFlags,
     pub spirv: &'a [u8],
     pub spec: &'a [u32],
-    pub warped: bool,
+    pub grid: GridSpec,
 }
 
 impl<'a> Stage<'a> {
     pub fn new(stage: vk::ShaderStageFlags, spirv: &'a [u8]) -> Self {
-        Stage { stage, spirv, spec: &[], warped: false }
+        Stage { stage, spirv, spec: &[], grid: GridSpec::default() }
     }
     pub fn spec(mut self, spec: &'a [u32]) -> Self {
         self.spec = spec;
         self
     }
-    /// For a warped grid (`voxel::warp`).
-    pub fn warped(mut self, warped: bool) -> Self {
-        self.warped = warped;
+    /// For a grid laid out as `grid` says (`voxel::VoxelGrid::spec`).
+    pub fn grid(mut self, grid: GridSpec) -> Self {
+        self.grid = grid;
         self
     }
 }
@@ -67,7 +76,7 @@ struct Spec {
 }
 
 impl Spec {
-    fn new(values: &[u32], warped: bool) -> Self {
+    fn new(values: &[u32], grid: GridSpec) -> Self {
         assert!(values.len() as u32 <= crate::config::WARP_CONSTANT_ID, "constant ids collide with WARPED");
         let mut entries: Vec<_> = (0..values.len() as u32)
             .map(|i| vk::SpecializationMapEntry { constant_id: i, offset: i * 4, size: 4 })
@@ -79,7 +88,13 @@ impl Spec {
             size: 4,
         });
         let mut data: Vec<u8> = bytemuck::cast_slice(values).to_vec();
-        data.extend_from_slice(&(warped as u32).to_ne_bytes());
+        entries.push(vk::SpecializationMapEntry {
+            constant_id: crate::config::CLIP_CONSTANT_ID,
+            offset: (n + 1) * 4,
+            size: 4,
+        });
+        data.extend_from_slice(&(grid.warped as u32).to_ne_bytes());
+        data.extend_from_slice(&(grid.clipped as u32).to_ne_bytes());
         Spec { entries, data }
     }
     fn info(&self) -> vk::SpecializationInfo<'_> {
@@ -170,7 +185,7 @@ impl Pipeline {
         push_constant_size: u32,
     ) -> Result<Self> {
         let module = Module::new(ctx, stage.spirv)?;
-        let spec = Spec::new(stage.spec, stage.warped);
+        let spec = Spec::new(stage.spec, stage.grid);
         let spec_info = spec.info();
         let layout = create_layout(ctx, set_layouts, push_constant_size)?;
         let info = vk::ComputePipelineCreateInfo::default()
@@ -191,7 +206,7 @@ impl Pipeline {
 
     pub fn graphics(ctx: &Arc<Context>, desc: &GraphicsDesc) -> Result<Self> {
         let modules: Vec<Module> = desc.stages.iter().map(|s| Module::new(ctx, s.spirv)).collect::<Result<_>>()?;
-        let specs: Vec<Spec> = desc.stages.iter().map(|s| Spec::new(s.spec, s.warped)).collect();
+        let specs: Vec<Spec> = desc.stages.iter().map(|s| Spec::new(s.spec, s.grid)).collect();
         let spec_infos: Vec<_> = specs.iter().map(|s| s.info()).collect();
         let stages: Vec<_> = desc
             .stages

@@ -51,7 +51,7 @@ impl BouncePass {
             "bounce",
             Stage::new(c, shaders::GI_BOUNCE_COMP)
                 .spec(&voxels.bricks.spec(anisotropic as u32))
-                .warped(voxels.grid.is_warped()),
+                .grid(voxels.grid.spec()),
             &[scene.set.layout, set.layout],
             0,
         )?;

@@ -105,7 +105,7 @@ impl DeferredShadePass {
         gi_scale: u32,
         accumulate: bool,
         reduced_specular: bool,
-        warped: bool,
+        grid: crate::gpu::GridSpec,
     ) -> Result<Self> {
         if !matches!(gi_scale, 1 | 2 | 4) {
             return Err(crate::Error::param("gi-scale", format!("must be 1, 2 or 4, got {gi_scale}")));
@@ -218,7 +218,7 @@ impl DeferredShadePass {
             Pipeline::compute(
                 ctx,
                 name,
-                Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&spec).warped(warped),
+                Stage::new(c, shaders::SHADE_DEFERRED_COMP).spec(&spec).grid(grid),
                 &layouts,
                 0,
             )

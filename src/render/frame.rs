@@ -247,6 +247,7 @@ impl FrameUniforms {
             View::Radiance(l) => l.min(f.mip_levels.saturating_sub(1)),
             _ => 0,
         };
+        let (clip, clip_levels) = f.grid.clip.map_or(Default::default(), |c| c.gpu());
         FrameUniforms {
             view_proj,
             inv_view_proj: view_proj.inverse(),
@@ -271,6 +272,8 @@ impl FrameUniforms {
             previous_view_proj: f.previous_view_proj.unwrap_or(view_proj),
             gi_jitter: f.gi_jitter,
             voxel_warp: f.grid.warp.gpu(),
+            clip,
+            clip_levels,
         }
     }
 }

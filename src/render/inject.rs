@@ -118,7 +118,7 @@ impl InjectPass {
             // Constant 3: whether any light is an area light (else its code is compiled out).
             Stage::new(c, shaders::GI_INJECT_COMP)
                 .spec(&[bricks.spec(0).as_slice(), &[area_lights as u32]].concat())
-                .warped(voxels.grid.is_warped()),
+                .grid(voxels.grid.spec()),
             &[scene.set.layout, inject_set.layout],
             16,
         )?;

@@ -37,13 +37,16 @@ pub struct MemoryRow {
     pub mips: u32,
     /// Bytes at this grid.
     pub bytes: u64,
-    /// Bytes over the dense N³ cube (N the longest axis).
+    /// Bytes over the dense N³ cube (N the longest axis; a clipmap's finest voxels over its
+    /// coarsest level).
     pub cube_bytes: u64,
 }
 
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct MemoryReport {
     pub dims: [u32; 3],
+    /// The side of the cube the cube column is over.
+    pub cube_side: u32,
     pub rows: Vec<MemoryRow>,
     pub bytes: u64,
     pub cube_bytes: u64,
@@ -56,8 +59,10 @@ impl MemoryReport {
     pub fn for_grid(grid: &VoxelGrid, layout: &Layout) -> Self {
         let Layout { bounces, listed, pool, resident, temporal, chains } = *layout;
         let stored = pool.map_or(extent_of(grid.dims), bricks::pool_extent);
-        // The same textures, dense, over the bounding cube of the grid's longest axis.
-        let cube = VoxelGrid { dims: glam::UVec3::splat(grid.longest()), ..*grid };
+        // The same textures, dense, over the bounding cube of the grid's longest axis; for a
+        // clipmap, one grid of its finest voxels over its coarsest level's extent.
+        let side = grid.clip.map_or(grid.longest(), |c| c.res << (c.levels - 1));
+        let cube = VoxelGrid { dims: glam::UVec3::splat(side), clip: None, ..*grid };
         let named = |grid: &VoxelGrid, extent| {
             let voxel = voxel_desc(extent);
             let mut v: Vec<(&'static str, ImageDesc, bool)> =
@@ -119,6 +124,7 @@ impl MemoryReport {
         });
         MemoryReport {
             dims: grid.dims.into(),
+            cube_side: side,
             bytes: rows.iter().map(|r| r.bytes).sum(),
             cube_bytes: rows.iter().map(|r| r.cube_bytes).sum(),
             rows,
@@ -138,7 +144,7 @@ impl MemoryReport {
 impl fmt::Display for MemoryReport {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
         let [x, y, z] = self.dims;
-        let n = x.max(y).max(z);
+        let n = self.cube_side;
         let mib = |b: u64| b as f64 / 1048576.0;
         writeln!(
             f,

@@ -6,6 +6,7 @@ pub mod deferred;
 pub mod filter;
 pub mod frame;
 pub mod inject;
+pub mod layout;
 pub mod memory;
 pub mod occupancy;
 pub mod overlay;
@@ -137,6 +138,14 @@ pub struct Follow {
     pub snap: bool,
 }
 
+/// Clipmap cascades around the camera (`voxel::clipmap`): `levels` levels of `--res` voxels
+/// each, the finest `extent` wide (world units; `None`: `Clipmap::default_extent`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipOptions {
+    pub levels: u32,
+    pub extent: Option<f32>,
+}
+
 /// What to render with: the voxelizer, the grid resolution, the view, GI on or off.
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
@@ -153,6 +162,8 @@ pub struct RenderOptions {
     /// Warp the grid by the thesis' function (Freed 2018 §4.6.1), its finest texels at the
     /// camera, with this slope at the grid's faces (`voxel::warp`); `None`: even texels.
     pub warp: Option<f32>,
+    /// Clipmap cascades around the camera instead of one grid; `None`: one grid.
+    pub clipmap: Option<ClipOptions>,
     /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
     pub inject_texels: f32,
     /// Which texels the passes over the volume visit.
@@ -204,6 +215,7 @@ impl Default for RenderOptions {
             tracing: Tracing::default(),
             follow: None,
             warp: None,
+            clipmap: None,
             inject_texels: crate::config::INJECT_TEXELS_PER_VOXEL,
             work: Work::default(),
             storage: Storage::default(),
@@ -294,27 +306,7 @@ impl Renderer {
         // The options say what runs (labels, timings, the viewer's overlay).
         options.method = options.method.on(&ctx.info.features);
         let resolution = options.resolution.unwrap_or(scene.settings.voxel_resolution);
-        let grid = match (options.follow, options.dims) {
-            (Some(_), Some(_)) => {
-                return Err(crate::Error::param(
-                    "dims",
-                    "a volume following the camera is a cube: give --res, not --dims",
-                ))
-            }
-            (Some(f), None) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
-            (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
-        };
-        let grid = match options.warp {
-            Some(end_slope) => grid.warped(scene.camera.eye, end_slope)?,
-            None => grid,
-        };
-        if options.warp.is_some() && scene.settings.gi.temporal < 1.0 {
-            // The history is kept texel by texel: a warp that follows the camera moves every texel.
-            return Err(crate::Error::param(
-                "temporal",
-                "temporal filtering of a warped volume is not supported: give --temporal 1",
-            ));
-        }
+        let grid = layout::grid_for(ctx, &scene, &options, resolution)?;
         let scene_gpu = SceneGpu::new(ctx, &scene)?;
         let targets = Targets::new(ctx, scene.camera.width, scene.camera.height)?;
         // Light lives in occupied voxels only: a voxel the temporal blend would leave lit after
@@ -323,7 +315,7 @@ impl Renderer {
         let request = crate::voxel::bricks::StorageRequest {
             storage: options.storage,
             bricks: options.bricks,
-            moving: options.follow.is_some() || options.warp.is_some(),
+            moving: options.moving(),
         };
         let sparse = request.resolve(ctx) == Storage::Sparse;
         if sparse && options.follow.is_some() && scene.settings.gi.temporal < 1.0 {
@@ -366,15 +358,15 @@ impl Renderer {
         let area = scene.lights.iter().any(crate::scene::Light::is_mesh_emitter);
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed, area)?;
         // A fitted grid over the static scene lists the same voxels every frame.
-        let fixed = options.follow.is_none();
+        let fixed = options.follow.is_none() && options.clipmap.is_none();
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed, fixed)?;
         let filter = FilterPass::new(ctx, &radiance, &voxels, occupied, listed, fixed)?;
         let bounce = (gi.bounces > 1)
             .then(|| BouncePass::new(ctx, &scene_gpu, &voxels, &radiance, occupied, aniso))
             .transpose()?;
         let prepass = DepthPrepass::new(ctx, &scene_gpu)?;
-        let warped = voxels.grid.is_warped();
-        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso, warped)?;
+        let grid_spec = voxels.grid.spec();
+        let shade = ShadePass::new(ctx, &scene_gpu, &shadow, &radiance, &voxels.bricks, aniso, grid_spec)?;
         let deferred = match options.tracing {
             Tracing::Deferred => {
                 let (s, acc) = (options.gi_scale, options.gi_accumulate);
@@ -389,7 +381,7 @@ impl Renderer {
                     s,
                     acc,
                     options.reduced_specular,
-                    warped,
+                    grid_spec,
                 )?)
             }
             Tracing::Forward if options.gi_scale != 1 || options.gi_accumulate => {
@@ -606,10 +598,17 @@ impl Renderer {
         self.timer.read_settled()
     }
 
-    /// Centres a following volume on `anchor`, and a warped grid's finest texels (no effect on a
-    /// fitted, even grid).
+    /// Centres a following volume or a clipmap's levels on `anchor`, and a warped grid's finest
+    /// texels (no effect on a fitted, even grid).
     pub fn follow(&mut self, anchor: glam::Vec3) -> Result<()> {
         let mut grid = self.voxels.grid;
+        if let Some(mut clip) = grid.clip {
+            if !anchor.is_finite() {
+                return Err(crate::Error::param("camera", format!("the clipmap's centre {anchor} is not finite")));
+            }
+            clip.recentre(anchor);
+            grid = clip.stack_grid();
+        }
         if let Some(f) = self.options.follow {
             grid = VoxelGrid { warp: grid.warp, ..VoxelGrid::around(anchor, f.extent, grid.longest(), f.snap)? };
         }
@@ -641,7 +640,7 @@ impl Renderer {
                 self.options.gi_scale,
                 self.options.gi_accumulate,
                 self.options.reduced_specular,
-                self.voxels.grid.is_warped(),
+                self.voxels.grid.spec(),
             )?),
             Tracing::Forward => None,
         };

@@ -34,7 +34,7 @@ impl ShadePass {
         radiance: &RadianceVolume,
         bricks: &crate::voxel::bricks::Bricks,
         anisotropic: bool,
-        warped: bool,
+        grid: crate::gpu::GridSpec,
     ) -> Result<Self> {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frag = vk::ShaderStageFlags::FRAGMENT;
@@ -55,7 +55,7 @@ impl ShadePass {
             "shade",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&[0]),
-                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG).spec(&aniso).warped(warped),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG).spec(&aniso).grid(grid),
             ],
         );
         desc.set_layouts = vec![scene.set.layout, scene.material_sets.layout, set.layout];

@@ -47,7 +47,7 @@ impl VolumeViewPass {
         let pipeline = Pipeline::compute(
             ctx,
             "volume view",
-            Stage::new(c, shaders::GI_VOLUME_VIEW_COMP).spec(&voxels.bricks.spec(0)).warped(voxels.grid.is_warped()),
+            Stage::new(c, shaders::GI_VOLUME_VIEW_COMP).spec(&voxels.bricks.spec(0)).grid(voxels.grid.spec()),
             &[scene.set.layout, set.layout],
             0,
         )?;

@@ -57,6 +57,9 @@ pub struct FrameUniforms {
     pub gi_jitter: Vec4,
     /// The grid's warp (`voxel::warp::Warp::gpu`; w = 1: none).
     pub voxel_warp: Vec4,
+    /// A clipmap's levels (`voxel::clipmap::Clipmap::gpu`; x = 0: none).
+    pub clip: Vec4,
+    pub clip_levels: [Vec4; config::MAX_CLIP_LEVELS as usize],
 }
 
 /// One light as the shaders read it (`LightData` in common/frame.glsl).

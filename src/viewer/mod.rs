@@ -31,7 +31,8 @@ vct viewer keys:
   O              toggle fly / orbit around the scene centre
   arrow keys     swing the light's direction (the GI follows)
   V              switch voxelizer (rasterized / tessellation / points)
-  X              warp the voxels, finest at the camera (Freed 2018 §4.6.1) on / off
+  X              voxel layout: fitted / warped, finest at the camera (Freed 2018 §4.6.1) /
+                 clipmap, levels around the camera
   C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, texels, radiance:0..3
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
@@ -158,9 +159,10 @@ fn overlay_lines(r: &Running) -> Vec<String> {
             grid.dims.x,
             grid.dims.y,
             grid.dims.z,
-            match o.warp {
-                Some(s) => format!(" warped ({s})"),
-                None => String::new(),
+            match (o.warp, grid.clip) {
+                (Some(s), _) => format!(" warped ({s})"),
+                (_, Some(c)) => format!(" clipmap ({} levels of {}³)", c.levels, c.res),
+                _ => String::new(),
             },
             renderer.voxels.bricks.storage.label()
         ),
@@ -329,19 +331,30 @@ impl App {
                 println!("voxelizer: {}", r.renderer.options.method.label());
             }
             KeyCode::KeyX => {
-                options.warp = match options.warp {
-                    Some(_) => None,
-                    None => Some(crate::voxel::warp::THESIS_END_SLOPE),
+                // Fitted, warped, clipmap (a clipmap is a cube around the camera: not with a
+                // following volume or given dims), and back.
+                let clip = crate::render::ClipOptions { levels: crate::voxel::clipmap::DEFAULT_LEVELS, extent: None };
+                let cube = options.follow.is_none() && options.dims.is_none();
+                (options.warp, options.clipmap) = match (options.warp, options.clipmap) {
+                    (None, None) => (Some(crate::voxel::warp::THESIS_END_SLOPE), None),
+                    (Some(_), _) if cube => (None, Some(clip)),
+                    _ => (None, None),
                 };
-                if options.warp.is_some() && r.renderer.scene.settings.gi.temporal < 1.0 {
-                    println!("warp: needs temporal filtering off (T)");
+                let moving = options.warp.is_some() || options.clipmap.is_some();
+                if moving && r.renderer.scene.settings.gi.temporal < 1.0 {
+                    println!("voxel layout: warped and clipmap volumes need temporal filtering off (T)");
                     return Ok(());
                 }
-                println!("warp: {}", if options.warp.is_some() { "function (finest at the camera)" } else { "none" });
+                let layout = match (options.warp, options.clipmap) {
+                    (Some(_), _) => "warped (finest at the camera)".to_string(),
+                    (_, Some(c)) => format!("clipmap ({} levels around the camera)", c.levels),
+                    _ => "fitted".to_string(),
+                };
+                println!("voxel layout: {layout}");
                 Self::rebuild(r, options)?;
             }
             KeyCode::Equal | KeyCode::NumpadAdd | KeyCode::Minus | KeyCode::NumpadSubtract => {
-                let now = r.renderer.voxels.grid.longest();
+                let now = r.renderer.voxels.grid.voxelized().longest();
                 let up = matches!(code, KeyCode::Equal | KeyCode::NumpadAdd);
                 let next = if up { (now * 2).min(512) } else { (now / 2).max(16) };
                 if next != now {
@@ -386,8 +399,11 @@ impl App {
                 r.renderer.options.gi = !options.gi;
                 println!("global illumination: {}", if r.renderer.options.gi { "on" } else { "off" });
             }
-            KeyCode::KeyT if options.warp.is_some() && r.renderer.scene.settings.gi.temporal >= 1.0 => {
-                println!("temporal filter: a warped volume keeps no history (X turns the warp off)");
+            KeyCode::KeyT
+                if (options.warp.is_some() || options.clipmap.is_some())
+                    && r.renderer.scene.settings.gi.temporal >= 1.0 =>
+            {
+                println!("temporal filter: a warped or clipmap volume keeps no history (X: back to fitted)");
             }
             KeyCode::KeyT => {
                 let gi = &mut r.renderer.scene.settings.gi;

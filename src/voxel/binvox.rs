@@ -94,8 +94,13 @@ pub fn read(path: &Path) -> Result<(VoxelGrid, Vec<bool>)> {
     }
     let d = dim.ok_or_else(|| bad("missing dim"))?;
     let dims = glam::UVec3::new(d[0] as u32, d[1] as u32, d[2] as u32);
-    let grid =
-        VoxelGrid { origin: translate, voxel: scale / dims.max_element() as f32, dims, warp: Default::default() };
+    let grid = VoxelGrid {
+        origin: translate,
+        voxel: scale / dims.max_element() as f32,
+        dims,
+        warp: Default::default(),
+        clip: None,
+    };
     let data = &bytes[cursor.position() as usize..];
     let len = grid.voxel_count();
     let mut ordered = Vec::with_capacity(len);

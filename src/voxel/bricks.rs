@@ -560,8 +560,13 @@ mod tests {
 
     #[test]
     fn residency_binds_each_block_that_holds_a_census_brick_once() {
-        let grid =
-            VoxelGrid { origin: glam::Vec3::ZERO, voxel: 1.0, dims: UVec3::new(64, 32, 32), warp: Default::default() };
+        let grid = VoxelGrid {
+            origin: glam::Vec3::ZERO,
+            voxel: 1.0,
+            dims: UVec3::new(64, 32, 32),
+            warp: Default::default(),
+            clip: None,
+        };
         let count = brick_count(&grid);
         let index = |b: UVec3| ((b.z * count.y + b.y) * count.x + b.x) as usize;
         let mut pages = vec![0u32; count.element_product() as usize];
@@ -588,8 +593,13 @@ mod tests {
 
     #[test]
     fn scatter_places_each_brick_voxel_at_its_grid_coordinate() {
-        let grid =
-            VoxelGrid { origin: glam::Vec3::ZERO, voxel: 1.0, dims: UVec3::new(4, 2, 2), warp: Default::default() };
+        let grid = VoxelGrid {
+            origin: glam::Vec3::ZERO,
+            voxel: 1.0,
+            dims: UVec3::new(4, 2, 2),
+            warp: Default::default(),
+            clip: None,
+        };
         // Bricks (2, 1, 1); brick 1 (x 2..4) in slot 1, brick 0 empty.
         let pool = pool_extent(2);
         let slots = pool_slots(2);

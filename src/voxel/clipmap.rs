@@ -6,17 +6,20 @@
 //! The levels are stored stacked along z in one volume of `res × res × (levels · res)` texels
 //! (level k in texels `k·res .. (k+1)·res` of z): the radiance mip chain of such a stack keeps
 //! the levels apart (mip m halves each slab exactly, since `res` is a power of two), so the
-//! filter and the sparse storage see one texel grid. This module is the placement only: which
-//! world box each level covers, where a world point lands in the stack, and which level a cone
-//! sample of a given footprint reads.
+//! filter and the sparse storage see one texel grid. This module is the placement: which world
+//! box each level covers, and what the shaders are told of it (common/frame.glsl maps points to
+//! levels, common/cone.glsl picks the level a cone sample reads; docs/design/clipmaps.md).
 
-use glam::{UVec3, Vec3};
+use glam::{UVec3, Vec3, Vec4};
 
 use super::grid::{VoxelGrid, MAX_RESOLUTION, MIN_RESOLUTION};
 use crate::error::{Error, Result};
 
+/// Levels the viewer's layout key gives a clipmap.
+pub const DEFAULT_LEVELS: u32 = 4;
+
 /// Most clipmap levels (the stack's z extent is `levels · res` ≤ 8 · 512).
-pub const MAX_LEVELS: u32 = 8;
+pub const MAX_LEVELS: u32 = crate::config::MAX_CLIP_LEVELS;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Clipmap {
@@ -76,37 +79,40 @@ impl Clipmap {
             voxel: self.voxel(k),
             dims: UVec3::splat(self.res),
             warp: super::warp::Warp::NONE,
+            clip: None,
         }
+    }
+
+    /// The finest level's extent for `levels` levels of `res` voxels over a scene of `bounds`
+    /// seen from `eye`: the coarsest holds the whole scene around `eye`, with a voxel to spare
+    /// for its snapping on every side (a surface outside every level gets no indirect light).
+    /// Levels are no larger than that: what lies beyond the scene is empty.
+    pub fn default_extent(bounds: &crate::scene::Aabb, eye: Vec3, res: u32, levels: u32) -> f32 {
+        let far = (eye - bounds.min).max(bounds.max - eye).max_element().max(1e-6);
+        let coarsest = 2.0 * far * res as f32 / res.saturating_sub(2).max(1) as f32;
+        coarsest / (1u32 << levels.clamp(1, MAX_LEVELS).saturating_sub(1)) as f32
+    }
+
+    /// The stack as the volume's grid: its finest level's origin and voxel, the stack's dims.
+    pub fn stack_grid(&self) -> VoxelGrid {
+        VoxelGrid { clip: Some(*self), dims: self.stack_dims(), ..self.level_grid(0) }
+    }
+
+    /// For the shaders (`FrameUniforms::clip`, `clip_levels`; common/frame.glsl): the level
+    /// count, a level's side in texels and the blend band (of a level's side); and each level's
+    /// minimum corner in voxels of level 0 from level 0's, with its voxel over level 0's.
+    pub fn gpu(&self) -> (Vec4, [Vec4; MAX_LEVELS as usize]) {
+        let mut levels = [Vec4::ZERO; MAX_LEVELS as usize];
+        for k in 0..self.levels {
+            let at = (self.origins[k as usize] - self.origins[0]) / self.voxel0;
+            levels[k as usize] = at.round().extend((1u32 << k) as f32);
+        }
+        (Vec4::new(self.levels as f32, self.res as f32, crate::config::CLIP_BLEND_BAND, 0.0), levels)
     }
 
     /// The texel extent of the stack that holds every level.
     pub fn stack_dims(&self) -> UVec3 {
         UVec3::new(self.res, self.res, self.res * self.levels)
-    }
-
-    /// The finest level whose box holds `p` with `margin` world units to spare on every side;
-    /// `None` outside the coarsest.
-    pub fn finest_holding(&self, p: Vec3, margin: f32) -> Option<u32> {
-        (0..self.levels).find(|&k| {
-            let lo = self.origins[k as usize] + Vec3::splat(margin);
-            let hi = self.origins[k as usize] + Vec3::splat(self.extent(k) - margin);
-            p.cmpge(lo).all() && p.cmple(hi).all()
-        })
-    }
-
-    /// Where a cone sample at `p` with footprint `diameter` reads: the finest level that holds
-    /// the sample with its radius to spare, and the mip level within it that matches the
-    /// footprint (`log2(diameter / voxel)`, at least 0). `None` outside the coarsest level.
-    pub fn sample_level(&self, p: Vec3, diameter: f32) -> Option<(u32, f32)> {
-        let k = self.finest_holding(p, diameter * 0.5)?;
-        Some((k, (diameter / self.voxel(k)).log2().max(0.0)))
-    }
-
-    /// Texel coordinates of world point `p` in level `k`'s slab of the stack (texel v spans
-    /// [v, v + 1)); z includes the slab's offset `k · res`.
-    pub fn stack_texel(&self, k: u32, p: Vec3) -> Vec3 {
-        let t = (p - self.origins[k as usize]) / self.voxel(k);
-        t + Vec3::new(0.0, 0.0, (k * self.res) as f32)
     }
 }
 
@@ -155,21 +161,27 @@ mod tests {
     }
 
     #[test]
-    fn samples_read_the_finest_level_that_holds_them() {
-        let c = Clipmap::around(Vec3::ZERO, 4.0, 32, 4).unwrap();
-        assert_eq!(c.sample_level(Vec3::ZERO, c.voxel0), Some((0, 0.0)));
-        // Outside level 0's box, level 1 answers; the footprint picks the mip within it.
-        let p = Vec3::new(3.0, 0.0, 0.0);
-        let (k, mip) = c.sample_level(p, 4.0 * c.voxel0).unwrap();
-        assert_eq!(k, 1);
-        assert!((mip - 1.0).abs() < 1e-5);
-        // A wide cone near the finest level's face moves out to where its footprint fits.
-        let (k, _) = c.sample_level(Vec3::new(1.9, 0.0, 0.0), 0.5).unwrap();
-        assert!(k >= 1);
-        assert_eq!(c.sample_level(Vec3::splat(100.0), 0.1), None);
-        // The stack places a point in its level's slab.
-        let t = c.stack_texel(2, c.origins[2] + Vec3::splat(c.voxel(2) * 0.5));
-        assert!((t - Vec3::new(0.5, 0.5, 64.5)).abs().max_element() < 1e-4);
+    fn the_default_extent_holds_the_scene_and_the_shaders_get_each_level_in_level_0_voxels() {
+        let bounds = crate::scene::Aabb { min: Vec3::new(-15.0, 0.0, -6.0), max: Vec3::new(15.0, 12.0, 6.0) };
+        let eye = Vec3::new(-13.0, 2.0, 0.0);
+        let e = Clipmap::default_extent(&bounds, eye, 64, 4);
+        let c = Clipmap::around(eye, e, 64, 4).unwrap();
+        let coarsest = c.level_grid(3).bounds();
+        assert!(coarsest.min.cmple(bounds.min).all() && coarsest.max.cmpge(bounds.max).all(), "{coarsest:?}");
+        let (head, levels) = c.gpu();
+        assert_eq!((head.x, head.y), (4.0, 64.0));
+        for k in 0..4 {
+            let l = levels[k as usize];
+            assert_eq!(l.w, (1 << k) as f32);
+            // Whole voxels of level 0 (each level snaps to its own voxel, a multiple of level 0's).
+            let back = c.origins[0] + l.truncate() * c.voxel0;
+            assert!((back - c.origins[k as usize]).abs().max_element() < 1e-3 * c.voxel(k), "level {k}");
+        }
+        assert_eq!(levels[4], Vec4::ZERO);
+        // The stack as the volume's grid: level 0's corner and voxel, every level's texels.
+        let g = c.stack_grid();
+        assert_eq!((g.origin, g.voxel, g.dims), (c.origins[0], c.voxel0, UVec3::new(64, 64, 256)));
+        assert_eq!(g.voxelized().dims, UVec3::splat(64));
     }
 
     #[test]

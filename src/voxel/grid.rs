@@ -12,6 +12,7 @@
 
 use glam::{UVec3, Vec3};
 
+use super::clipmap::Clipmap;
 use super::warp::Warp;
 use crate::error::{Error, Result};
 use crate::scene::Aabb;
@@ -29,6 +30,9 @@ pub struct VoxelGrid {
     pub dims: UVec3,
     /// How the texels spread over the box (`Warp::NONE`: evenly, `voxel` wide each).
     pub warp: Warp,
+    /// A clipmap's levels, stacked along z (`voxel::clipmap`): `origin` and `voxel` are its
+    /// finest level's, `dims` the stack's. `None`: one grid.
+    pub clip: Option<Clipmap>,
 }
 
 fn check_axis(name: &'static str, n: u32) -> Result<()> {
@@ -76,7 +80,7 @@ impl VoxelGrid {
     }
 
     fn centred(bounds: &Aabb, voxel: f32, dims: UVec3) -> Self {
-        VoxelGrid { origin: bounds.center() - dims.as_vec3() * voxel * 0.5, voxel, dims, warp: Warp::NONE }
+        VoxelGrid { origin: bounds.center() - dims.as_vec3() * voxel * 0.5, voxel, dims, warp: Warp::NONE, clip: None }
     }
 
     /// `dims` when given, else the fitted grid with `longest` voxels along the longest axis.
@@ -100,7 +104,7 @@ impl VoxelGrid {
         if snap {
             origin = (origin / voxel).floor() * voxel;
         }
-        Ok(VoxelGrid { origin, voxel, dims: UVec3::splat(resolution), warp: Warp::NONE })
+        Ok(VoxelGrid { origin, voxel, dims: UVec3::splat(resolution), warp: Warp::NONE, clip: None })
     }
 
     /// The grid warped by the thesis' function (Freed 2018 §4.6.1) with its finest texels at
@@ -113,6 +117,17 @@ impl VoxelGrid {
     /// Whether the texels spread unevenly (shaders built for the grid then keep the warp's code).
     pub fn is_warped(&self) -> bool {
         !self.warp.is_none()
+    }
+
+    /// The grid one voxelization draw writes: the grid itself, or a clipmap's finest level (each
+    /// level's draw moves it to its own box, `Voxelizer::record`).
+    pub fn voxelized(&self) -> VoxelGrid {
+        self.clip.map_or(*self, |c| c.level_grid(0))
+    }
+
+    /// How the shaders that map world space to the texels are specialized for this grid.
+    pub fn spec(&self) -> crate::gpu::GridSpec {
+        crate::gpu::GridSpec { warped: self.is_warped(), clipped: self.clip.is_some() }
     }
 
     /// The same warp with its finest texels moved to `focus` (world).

@@ -212,6 +212,17 @@ impl ParamsUbo {
         self.buffer.set(std::mem::offset_of!(VoxelParams, warp), bytemuck::bytes_of(&self.params.warp));
     }
 
+    /// Points the next draws at level `k` of `clip` (its box, in slab `k` of the stack), as one
+    /// grid of its own: the voxelizers write a level as they write a grid.
+    fn set_level(&self, clip: &clipmap::Clipmap, k: u32) {
+        let level = clip.level_grid(k);
+        let origin_size: [f32; 4] = level.origin.extend(level.voxel).into();
+        let mut grid = self.params.grid;
+        grid[2] = k * clip.res;
+        self.buffer.set(std::mem::offset_of!(VoxelParams, origin_size), bytemuck::bytes_of(&origin_size));
+        self.buffer.set(std::mem::offset_of!(VoxelParams, grid), bytemuck::bytes_of(&grid));
+    }
+
     /// The camera a refinement sees this frame.
     pub fn set_camera(&self, view_proj: glam::Mat4) {
         let m = view_proj.to_cols_array_2d();
@@ -278,6 +289,7 @@ pub(crate) fn params_for(
     level_scale: f32,
     max_level: f32,
 ) -> VoxelParams {
+    let grid = &grid.voxelized();
     VoxelParams {
         origin_size: grid.origin.extend(grid.voxel).into(),
         grid: [grid.longest(), flags, 0, 0],
@@ -319,20 +331,46 @@ impl Voxelizer {
         })
     }
 
-    /// Records the voxelization of the scene into `volume` (cleared first).
+    /// Records the voxelization of the scene into `volume` (cleared first). A clipmap's levels
+    /// are voxelized one after another, each as a grid of its own written into its slab of the
+    /// stack (`voxel::clipmap`), every frame: a level is as cheap to voxelize whole as the part of
+    /// it that scrolled in is to find, where a frame's voxelization is a few percent of it
+    /// (docs/benchmarks.md, "Clipmaps").
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, volume: &VoxelVolume) {
-        match self {
-            Voxelizer::Tess(t) => t.params.record_upload(cmd),
-            Voxelizer::Raster(r) => r.params.record_upload(cmd),
-            Voxelizer::Points(p) => p.params.record_upload(cmd),
-        }
         volume.record_clear(cmd);
-        match self {
-            Voxelizer::Tess(t) => t.record(cmd, scene_gpu),
-            Voxelizer::Raster(r) => r.record(cmd, scene_gpu, volume),
-            Voxelizer::Points(p) => p.record(cmd, scene_gpu),
+        let params = self.params();
+        let draw = || {
+            params.record_upload(cmd);
+            match self {
+                Voxelizer::Tess(t) => t.record(cmd, scene_gpu),
+                Voxelizer::Raster(r) => r.record(cmd, scene_gpu, volume),
+                Voxelizer::Points(p) => p.record(cmd, scene_gpu),
+            }
+        };
+        match &volume.grid.clip {
+            None => draw(),
+            Some(clip) => {
+                for k in 0..clip.levels {
+                    params.set_level(clip, k);
+                    draw();
+                    // Earlier levels' writes before the next level's (the same textures, list
+                    // and page table; a voxel of two levels is two texels, but the list's count
+                    // and the pool's slots are shared).
+                    volume.record_between_draws(cmd);
+                }
+                // What the next frame's key reads: level 0, as set_grid left it.
+                params.set_level(clip, 0);
+            }
         }
         volume.record_finish(cmd);
+    }
+
+    fn params(&self) -> &ParamsUbo {
+        match self {
+            Voxelizer::Tess(t) => &t.params,
+            Voxelizer::Raster(r) => &r.params,
+            Voxelizer::Points(p) => &p.params,
+        }
     }
 
     /// Writes into `volume` from now on (same grid and storage; the GPU must be idle).
@@ -346,10 +384,16 @@ impl Voxelizer {
 
     /// Moves the grid the voxelizer writes (same voxel size and resolution).
     pub fn set_grid(&mut self, grid: &VoxelGrid) {
-        match self {
-            Voxelizer::Tess(t) => t.params.set_origin(grid),
-            Voxelizer::Raster(r) => r.params.set_origin(grid),
-            Voxelizer::Points(p) => p.params.set_origin(grid),
+        let params = match self {
+            Voxelizer::Tess(t) => &mut t.params,
+            Voxelizer::Raster(r) => &mut r.params,
+            Voxelizer::Points(p) => &mut p.params,
+        };
+        params.set_origin(grid);
+        // A clipmap's levels move together: level 0 moves whenever a coarser one does (each
+        // snaps to its own voxel, a multiple of level 0's), so its origin keys them all.
+        if let Some(clip) = &grid.clip {
+            params.set_level(clip, 0);
         }
     }
 
@@ -364,12 +408,7 @@ impl Voxelizer {
     /// renderer): its parameters (the grid's place among them) and, for points refined where
     /// the camera looks, the camera. Equal keys make the same voxels.
     pub fn key(&self) -> Vec<u8> {
-        let camera = self.sees_camera();
-        match self {
-            Voxelizer::Tess(t) => t.params.key(camera),
-            Voxelizer::Raster(r) => r.params.key(camera),
-            Voxelizer::Points(p) => p.params.key(camera),
-        }
+        self.params().key(self.sees_camera())
     }
 
     /// Whether the voxels depend on the camera (points refined where it looks).

@@ -155,7 +155,7 @@ impl Refine {
         scene_gpu: &SceneGpu,
         set: &DescriptorSet,
         spec: &[u32],
-        warped: bool,
+        grid: crate::gpu::GridSpec,
     ) -> Result<Self> {
         let (w, h) = (scene.camera.width, scene.camera.height);
         let depth = Image::new(
@@ -163,7 +163,7 @@ impl Refine {
             "refinement depth",
             ImageDesc::d2(REFINE_DEPTH, w, h, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT),
         )?;
-        let vert = || Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_REFINE_VERT).spec(spec).warped(warped);
+        let vert = || Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_REFINE_VERT).spec(spec).grid(grid);
         let layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];
         let mut desc = GraphicsDesc::new("refinement depth", vec![vert()]);
         desc.set_layouts = layouts.clone();
@@ -177,7 +177,7 @@ impl Refine {
             "refinement",
             vec![
                 vert(),
-                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_REFINE_FRAG).spec(spec).warped(warped),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_REFINE_FRAG).spec(spec).grid(grid),
             ],
         );
         desc.set_layouts = layouts;
@@ -284,7 +284,7 @@ impl PointsVoxelizer {
                     "points voxelizer",
                     vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_VERT)
                         .spec(&spec)
-                        .warped(volume.grid.is_warped())],
+                        .grid(volume.grid.spec())],
                 );
                 desc.set_layouts = layouts;
                 desc.vertex = Some(vertex_layout_untangented());
@@ -305,7 +305,7 @@ impl PointsVoxelizer {
                     "points voxelizer (generating)",
                     vec![Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_POINTS_GEN_VERT)
                         .spec(&spec)
-                        .warped(volume.grid.is_warped())],
+                        .grid(volume.grid.spec())],
                 );
                 desc.set_layouts = layouts.into_iter().chain([mesh_set.layout]).collect();
                 let points = if count > 0 {
@@ -322,8 +322,7 @@ impl PointsVoxelizer {
         // The scene's own camera until the renderer says otherwise (a sparse pool's census
         // then sees what the first frame will).
         params_buffer.set_camera(scene.camera.view_proj(&scene.mesh.bounds));
-        let refine =
-            refine.then(|| Refine::new(ctx, scene, scene_gpu, &set, &spec, volume.grid.is_warped())).transpose()?;
+        let refine = refine.then(|| Refine::new(ctx, scene, scene_gpu, &set, &spec, volume.grid.spec())).transpose()?;
         Ok(PointsVoxelizer {
             ctx: ctx.clone(),
             pipeline,

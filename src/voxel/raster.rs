@@ -32,7 +32,7 @@ impl RasterVoxelizer {
         depth_span: bool,
     ) -> Result<Self> {
         let viewport_scale = viewport_scale.clamp(0.125, 8.0);
-        let size = ((volume.grid.longest() as f32 * viewport_scale).round() as u32).max(1);
+        let size = ((volume.grid.voxelized().longest() as f32 * viewport_scale).round() as u32).max(1);
         let max = ctx.info.limits.max_framebuffer_width.min(ctx.info.limits.max_framebuffer_height);
         if size > max {
             return Err(crate::Error::param(
@@ -57,7 +57,7 @@ impl RasterVoxelizer {
                 Stage::new(vk::ShaderStageFlags::GEOMETRY, shaders::VOXELIZE_RASTER_GEOM),
                 Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG)
                     .spec(&spec)
-                    .warped(volume.grid.is_warped()),
+                    .grid(volume.grid.spec()),
             ],
         );
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];

@@ -95,8 +95,13 @@ mod tests {
             draws: vec![Draw { first_index: 0, index_count: 6, material: 0 }],
             bounds: Aabb { min: Vec3::ZERO, max: Vec3::new(100.0, 100.0, 1.0) },
         };
-        let grid =
-            VoxelGrid { origin: Vec3::ZERO, voxel: 1.0, dims: glam::UVec3::splat(128), warp: Default::default() };
+        let grid = VoxelGrid {
+            origin: Vec3::ZERO,
+            voxel: 1.0,
+            dims: glam::UVec3::splat(128),
+            warp: Default::default(),
+            clip: None,
+        };
         let (out, split) = subdivide_for_tessellation(&mesh, &grid, 1.0, 64.0);
         assert_eq!(split, 1, "only the big triangle is split");
         let area = |m: &Mesh| -> f32 {

@@ -67,7 +67,7 @@ impl TessVoxelizer {
                 Stage::new(vk::ShaderStageFlags::TESSELLATION_CONTROL, shaders::VOXELIZE_TESS_TESC),
                 Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE)
                     .spec(&spec)
-                    .warped(volume.grid.is_warped()),
+                    .grid(volume.grid.spec()),
             ],
         );
         desc.set_layouts = vec![scene_gpu.set.layout, scene_gpu.material_sets.layout, set.layout];

@@ -163,6 +163,12 @@ impl VoxelVolume {
         gpu::memory_barrier(ctx, cmd, scope::TRANSFER_WRITE, voxel_write_scope());
     }
 
+    /// Orders one voxelization draw's writes before the next's (a clipmap's levels share the
+    /// occupied list's count and the brick table).
+    pub fn record_between_draws(&self, cmd: vk::CommandBuffer) {
+        gpu::memory_barrier(&self.ctx, cmd, voxel_write_scope(), voxel_write_scope());
+    }
+
     /// Makes the voxelizers' writes visible to the compute and transfer work that follows, and
     /// writes the occupied list's dispatch arguments.
     pub fn record_finish(&self, cmd: vk::CommandBuffer) {

@@ -113,6 +113,10 @@ pub struct BenchArgs {
     /// thesis' 0.25).
     #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = warp_slope)]
     pub warp_slopes: Option<Vec<f32>>,
+    /// With --layouts: clipmaps to measure beside the fitted grid, each LEVELSxRES, e.g. 2x64,4x64
+    /// (none by default).
+    #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = clip_layout)]
+    pub clipmaps: Option<Vec<(u32, u32)>>,
     /// With --study: only the variants whose name contains this text.
     #[arg(long, requires = "study", value_name = "TEXT")]
     pub only: Option<String>,
@@ -160,6 +164,14 @@ pub struct SceneArgs {
     pub no_snap: bool,
     #[command(flatten)]
     pub warp: WarpArgs,
+    /// Clipmap cascades around the camera: LEVELS nested cubes of --res voxels each, each twice
+    /// the extent of the one inside it and snapped to its own voxel (1..=8).
+    #[arg(long, value_name = "LEVELS", value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub clipmap: Option<u32>,
+    /// With --clipmap: the finest level's edge (world units); default: the coarsest level holds
+    /// the whole scene around the camera.
+    #[arg(long, value_name = "EXTENT", value_parser = clip_extent)]
+    pub clip_extent: Option<f32>,
     /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
@@ -241,6 +253,17 @@ impl WarpArgs {
     }
 }
 
+/// `LEVELSxRES`: clipmap levels and their voxels along each axis.
+pub fn clip_layout(text: &str) -> std::result::Result<(u32, u32), String> {
+    let bad = || format!("'{text}' is not LEVELSxRES (e.g. 4x64)");
+    let (l, n) = text.split_once('x').ok_or_else(bad)?;
+    Ok((l.parse().map_err(|_| bad())?, n.parse().map_err(|_| bad())?))
+}
+
+pub fn clip_extent(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 1e-4, 1e6)
+}
+
 pub fn cone_bias(text: &str) -> std::result::Result<f32, String> {
     float_in(text, 0.0, 16.0)
 }
@@ -259,6 +282,10 @@ impl SceneArgs {
         self.warp.end_slope()
     }
 
+    pub fn clipmap(&self) -> Option<vct::render::ClipOptions> {
+        self.clipmap.map(|levels| vct::render::ClipOptions { levels, extent: self.clip_extent })
+    }
+
     /// The render options these arguments set, shared by `render` and `view`; the GI scale and
     /// its accumulation are left to each (their defaults differ).
     pub fn render_options(&self) -> Result<vct::render::RenderOptions> {
@@ -268,6 +295,7 @@ impl SceneArgs {
             dims: self.method.dims,
             follow: self.follow(),
             warp: self.warp(),
+            clipmap: self.clipmap(),
             inject_texels: self.inject_texels,
             work: self.work.work(),
             storage: self.method.storage(),

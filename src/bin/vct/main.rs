@@ -358,6 +358,8 @@ fn compare(args: CompareArgs) -> Result<()> {
     println!("FLIP (tone-mapped): {flip:.5}");
     if !a.hdr.is_empty() && !b.hdr.is_empty() {
         println!("RMSE (linear radiance): {:.6}", vct::reference::metrics::rmse(&a.linear(), &b.linear()));
+        let mean = |f: &vct::render::FrameImages| f.linear().iter().map(|p| p.element_sum() as f64).sum::<f64>();
+        println!("mean radiance, test over reference: {:.4}", mean(&b) / mean(&a).max(1e-30));
     } else {
         println!("RMSE (linear radiance): n/a (give two EXR files)");
     }
@@ -544,6 +546,8 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
             if args.layouts {
                 let slopes = args.warp_slopes.clone().unwrap_or(vec![vct::voxel::warp::THESIS_END_SLOPE]);
                 v.extend(slopes.into_iter().map(|s| accuracy::Variant::warped(&default, s)));
+                let clips = args.clipmaps.clone().unwrap_or_default();
+                v.extend(clips.into_iter().map(|(l, n)| accuracy::Variant::clipped(&default, l, n)));
             }
             v
         };

@@ -1,0 +1,130 @@
+//! Clipmap cascades (voxel::clipmap; Wicked Engine's VXGI, Freed 2018 §2.3.2) against what they
+//! must agree with: one level is the snapped volume that follows the camera, and where the finest
+//! level holds the whole room, the levels agree with the fitted grid of the same voxels; where
+//! it does not, the cones find the room's light in the coarser levels.
+
+mod common;
+
+use glam::Vec3;
+use vct::render::{ClipOptions, Follow, FrameImages, RenderOptions, Renderer, View};
+use vct::scene::Scene;
+use vct::voxel::{Coverage, VoxelizeMethod};
+
+/// The Cornell box seen from inside, near its open front (a clipmap centres on the camera).
+fn inside() -> Scene {
+    let mut scene = Scene::embedded_default().unwrap();
+    scene.camera.eye = Vec3::new(0.0, 2.75, 2.5);
+    scene.camera.target = Vec3::new(0.0, 2.75, 0.0);
+    scene.camera.fov_y_deg = 90.0;
+    scene.camera.width = 96;
+    scene.camera.height = 96;
+    scene
+}
+
+fn options(res: u32, view: View) -> RenderOptions {
+    RenderOptions { method: VoxelizeMethod::raster(Coverage::Msaa), resolution: Some(res), view, ..Default::default() }
+}
+
+fn clipped(levels: u32, res: u32, extent: Option<f32>, view: View) -> RenderOptions {
+    RenderOptions { clipmap: Some(ClipOptions { levels, extent }), ..options(res, view) }
+}
+
+fn render(scene: &Scene, options: RenderOptions) -> FrameImages {
+    let ctx = common::context();
+    let r = Renderer::new(&ctx, scene.clone(), options).unwrap();
+    r.render().unwrap();
+    let f = r.read_frame().unwrap();
+    drop(r);
+    common::assert_clean(&ctx);
+    f
+}
+
+fn mean(f: &FrameImages) -> f64 {
+    let n = (f.width * f.height) as usize;
+    (0..n).map(|p| (f.hdr[4 * p] + f.hdr[4 * p + 1] + f.hdr[4 * p + 2]) as f64).sum::<f64>() / n as f64
+}
+
+/// One level is a cube of --res voxels around the camera snapped to its voxel: the volume that
+/// follows the camera, texel for texel, so the same image.
+#[test]
+fn one_level_is_the_snapped_following_volume() {
+    let scene = inside();
+    let follow = RenderOptions { follow: Some(Follow { extent: 12.0, snap: true }), ..options(32, View::Full) };
+    let a = render(&scene, follow);
+    let b = render(&scene, clipped(1, 32, Some(12.0), View::Full));
+    let d = common::difference(&b, &a, |_| true);
+    // The same texels; the clipmap's march orders its float operations otherwise.
+    assert!(d < 1e-3, "one clipmap level differs from the snapped following volume by {d}");
+}
+
+/// Where the finest level holds the room, the clipmap renders what the fitted grid of the same
+/// voxels does: a 32³ grid fitted to the 5.5 m room has voxels of 5.5/30 m on the lattice the
+/// clipmap snaps to, so level 0 (64 of them around the camera) voxelizes the room alike. What
+/// is left differs in the mips (they are grouped from other corners) and where wide cones near
+/// level 0's border read level 1. Two and three levels must agree with one: the coarser levels
+/// are sampled only near level 0's border, blended.
+#[test]
+fn levels_agree_with_the_fitted_grid_where_the_finest_holds_the_room() {
+    let scene = inside();
+    let voxel = 5.5 / 30.0;
+    let fitted = render(&scene, RenderOptions { dims: Some(glam::UVec3::splat(32)), ..options(32, View::Full) });
+    let one = render(&scene, clipped(1, 64, Some(64.0 * voxel), View::Full));
+    let three = render(&scene, clipped(3, 64, Some(64.0 * voxel), View::Full));
+    let (d_fitted, d_levels) =
+        (common::difference(&three, &fitted, |_| true), common::difference(&three, &one, |_| true));
+    let ratio = mean(&three) / mean(&fitted);
+    println!("three levels against the fitted grid: mean |diff| {d_fitted:.4}, mean ratio {ratio:.4}; against one level: {d_levels:.4}");
+    assert!((ratio - 1.0).abs() < 0.03, "the clipmap's mean radiance is {ratio:.4} of the fitted grid's");
+    assert!(d_fitted < 0.06, "three levels differ from the fitted grid by {d_fitted:.4} of its radiance");
+    assert!(
+        d_levels < 0.03,
+        "three levels differ from one by {d_levels:.4}: the coarse levels show where level 0 holds the room"
+    );
+    // A second bounce, gathered in voxel space from every level's occupied voxels, alike.
+    let mut bounced = scene.clone();
+    bounced.settings.gi.bounces = 2;
+    let fitted2 = render(&bounced, RenderOptions { dims: Some(glam::UVec3::splat(32)), ..options(32, View::Full) });
+    let three2 = render(&bounced, clipped(3, 64, Some(64.0 * voxel), View::Full));
+    let (gain_fitted, gain_clip) = (mean(&fitted2) / mean(&fitted), mean(&three2) / mean(&three));
+    println!("a second bounce brightens the fitted grid {gain_fitted:.4}x, the clipmap {gain_clip:.4}x");
+    assert!(gain_fitted > 1.02, "the second bounce adds nothing to the fitted grid: {gain_fitted:.4}");
+    assert!((gain_clip / gain_fitted - 1.0).abs() < 0.03, "bounces: clipmap {gain_clip:.4}x, fitted {gain_fitted:.4}x");
+}
+
+/// Where the finest level holds only the camera's surroundings, the room's indirect light comes
+/// from the coarser levels: it must still be there, near the fitted grid's, and not the dark of
+/// a cone that found nothing.
+#[test]
+fn cones_find_the_rooms_light_in_the_coarser_levels() {
+    let scene = inside();
+    let fitted = mean(&render(&scene, options(64, View::Indirect)));
+    // Four levels of 32: the finest 1.5 m wide around the camera, the coarsest holding the room.
+    let clip = render(&scene, clipped(4, 32, None, View::Indirect));
+    let ratio = mean(&clip) / fitted;
+    println!("indirect light of four levels of 32 against the fitted 64³ grid: {ratio:.3}");
+    assert!((0.8..1.25).contains(&ratio), "the clipmap's indirect light is {ratio:.3} of the fitted grid's");
+    // The texel view colours each surface by its level: the room's surfaces lie beyond level 0.
+    let levels = render(&scene, clipped(4, 32, None, View::Texels));
+    let (x, y) = (levels.width / 2, levels.height / 2);
+    let [r, g, _] = common::ldr(&levels, x, y);
+    assert!(r > g / 2, "the back wall, 5 m from the camera, is coloured as level 0: {r} {g}");
+}
+
+/// What a clipmap cannot be combined with is refused with the option's name.
+#[test]
+fn clipmaps_refuse_what_does_not_apply() {
+    let ctx = common::context();
+    let scene = inside();
+    let refused = |o: RenderOptions, scene: &Scene| Renderer::new(&ctx, scene.clone(), o).err().unwrap().to_string();
+    let with = |o: RenderOptions| RenderOptions { clipmap: Some(ClipOptions { levels: 3, extent: None }), ..o };
+    let follow = with(RenderOptions { follow: Some(Follow { extent: 4.0, snap: true }), ..options(32, View::Full) });
+    assert!(refused(follow, &scene).contains("--follow"));
+    let warp = with(RenderOptions { warp: Some(0.25), ..options(32, View::Full) });
+    assert!(refused(warp, &scene).contains("--warp"));
+    let mut temporal = scene.clone();
+    temporal.settings.gi.temporal = 0.5;
+    assert!(refused(clipped(3, 32, None, View::Full), &temporal).contains("temporal"));
+    assert!(refused(clipped(3, 48, None, View::Full), &scene).contains("res"));
+    assert!(refused(clipped(3, 32, Some(f32::NAN), View::Full), &scene).contains("clipmap"));
+    common::assert_clean(&ctx);
+}
