@@ -8,6 +8,7 @@ mod common;
 use glam::Vec3;
 use vct::render::{ClipOptions, Follow, FrameImages, RenderOptions, Renderer, View};
 use vct::scene::Scene;
+use vct::voxel::headless::voxelize_in;
 use vct::voxel::{Coverage, VoxelizeMethod};
 
 /// The Cornell box seen from inside, near its open front (a clipmap centres on the camera).
@@ -108,6 +109,45 @@ fn cones_find_the_rooms_light_in_the_coarser_levels() {
     let (x, y) = (levels.width / 2, levels.height / 2);
     let [r, g, _] = common::ldr(&levels, x, y);
     assert!(r > g / 2, "the back wall, 5 m from the camera, is coloured as level 0: {r} {g}");
+}
+
+/// Each level of the stack holds what its box voxelizes to alone, with every voxelizer: the
+/// levels' draws write their own slabs, and what a voxelizer reads back while it writes (the
+/// tessellation path's neighbour fill, the point path's refinement of empty voxels) is its own
+/// level's.
+#[test]
+fn each_level_of_the_stack_is_its_box_voxelized_alone() {
+    let ctx = common::context();
+    let scene = inside();
+    let clip = vct::voxel::clipmap::Clipmap::around(Vec3::new(0.3, 2.1, -0.4), 2.0, 32, 3).unwrap();
+    // The point path scatters its points at a density per voxel area of level 0 for every level:
+    // a level alone gets the same points at 4^k that density.
+    let points = |k: u32| VoxelizeMethod::Points {
+        density: vct::voxel::points::DEFAULT_POINT_DENSITY * 4f32.powi(k as i32),
+        source: vct::voxel::points::PointSource::Load,
+        refine: true,
+    };
+    let methods: [&dyn Fn(u32) -> VoxelizeMethod; 3] =
+        [&|_| VoxelizeMethod::raster(Coverage::Auto), &|_| VoxelizeMethod::tess(), &points];
+    for of_level in methods {
+        let method = of_level(0);
+        let stack = voxelize_in(&ctx, &scene, method, clip.stack_grid(), 1).unwrap().occupied();
+        for k in 0..clip.levels {
+            let alone = voxelize_in(&ctx, &scene, of_level(k), clip.level_grid(k), 1).unwrap().occupied();
+            let n = 32usize.pow(3);
+            let slab = &stack[k as usize * n..(k as usize + 1) * n];
+            let differ = slab.iter().zip(&alone).filter(|(a, b)| a != b).count();
+            let filled = alone.iter().filter(|&&o| o).count();
+            assert!(filled > 100, "{} level {k}: only {filled} voxels", method.label());
+            assert_eq!(
+                differ,
+                0,
+                "{} level {k}: {differ} of {filled} voxels differ from the level alone",
+                method.label()
+            );
+        }
+    }
+    common::assert_clean(&ctx);
 }
 
 /// What a clipmap cannot be combined with is refused with the option's name.

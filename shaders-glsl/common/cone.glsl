@@ -46,6 +46,8 @@ struct ConeParams {
     float chain_base;  // the isotropic chain's mip that holds level 1 (0: a chain of its own)
     vec4 warp;         // the grid's warp (common/warp.glsl; w = 1: none)
     float normal_fine; // texels per grid voxel along the normal where the cone starts (at_start)
+    int start_level;   // a clipmap's level whose texels the start offsets are in, at the least (a
+                       // voxel's gather: its own level's; 0: the finest that holds the start)
 };
 
 // Level 0 at `pos`, trilinearly filtered (common/level0.glsl, or the includer's own).
@@ -303,8 +305,12 @@ vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D a
                 vec3 normal, vec3 dir, float tan_half, ConeParams p) {
     int levels = clip_levels();
     vec3 g0 = uvw * frame.clip.y;
-    // The start offsets are in texels of the finest level where the cone starts (at_start).
-    float s0 = frame.clip_levels[clip_level_of(g0)].w;
+    // The start offsets are in texels of the finest level where the cone starts (at_start), or
+    // of the level the start's own voxel is in, if coarser: a coarse voxel's centre may lie half
+    // of its texel from its surface, and a cone leaving it by a finer level's texels would start
+    // behind its own wall (its samples may then still read finer levels: the start is clear of
+    // the surface there too).
+    float s0 = frame.clip_levels[max(clip_level_of(g0), p.start_level)].w;
     float bias = p.bias * s0;
     vec3 start = g0 + bias * normal;
     float rise = dot(dir, normal);

@@ -104,12 +104,18 @@ bool atomic_average(uint which, ivec3 coord, vec3 value) {
 
 #include "rgb9e5.glsl"
 
+// Voxel `v` of the grid being written (a clipmap level's, in_grid) as a texel of the volume: in
+// its slab of the stack.
+ivec3 in_slab(ivec3 v) {
+    return v + ivec3(0, 0, int(voxel.grid.z));
+}
+
 // Writes one voxel sample (albedo, unit normal, emission) if `coord` lies inside the grid (and,
 // with sparse storage, its brick has or gets a slot).
 void write_voxel(ivec3 coord, vec3 albedo, vec3 normal, vec3 emission) {
     ivec3 t;
     if (!in_grid(coord)) return;
-    coord.z += int(voxel.grid.z);
+    coord = in_slab(coord);
     if (!claim_brick(coord, t)) return;
     if (atomic_average(0u, t, clamp(albedo, 0.0, 1.0))) occupied.voxels[atomicAdd(occupied.count, 1u)] = pack_voxel(coord);
     atomic_average(1u, t, normalize(normal) * 0.5 + 0.5);

@@ -54,6 +54,8 @@ void main() {
     ConeParams p = frame_cone_params();
     p.bias += 1.0;
     p.surface = 1.5;
+    // A clipmap voxel's offsets are in its own level's texels.
+    if (clip_on()) p.start_level = v.z / int(frame.clip.y);
     vec4 gathered = gather_bounce(uvw, n, p);
     // A voxel no light reaches directly has no lit side, and a mesh normal may point either way
     // (surfaces are two-sided): it gathers on both sides and keeps the brighter, the side its

@@ -40,7 +40,13 @@ void main() {
     // Half a texel of the level along the longest axis (the finest in texture space).
     float step = 0.5 * exp2(level) / (clip_on() ? frame.clip.y : frame.voxel_grid.x) / warp_peak();
     for (float t = tmin; t < tmax; t += step) {
-        vec3 p = grid_to_texel((o + d * t) * march_dims()) / frame.voxel_dims.xyz;
+        vec3 tx = grid_to_texel((o + d * t) * march_dims());
+        if (clip_on()) {
+            // Inside its level's slab, by half a texel of the level shown.
+            float n = frame.clip.y, slab = floor(tx.z / n) * n, h = 0.5 * exp2(level);
+            tx.z = clamp(tx.z, slab + h, slab + n - h);
+        }
+        vec3 p = tx / frame.voxel_dims.xyz;
         if (radiance) {
             vec4 s = level < 0.5 ? level0_sample(radiance_volume, p) : textureLod(radiance_chain, p, level - 1.0);
             if (s.a > 0.3) { color = s.rgb / s.a; break; }

@@ -15,7 +15,7 @@ layout(location = 2) in vec2 in_uv;
 
 void main() {
     ivec3 v = ivec3(floor(to_voxel_space(in_world)));
-    if (!in_grid(v) || imageLoad(voxel_albedo, stored_at(v)).r != 0u) return;
+    if (!in_grid(v) || imageLoad(voxel_albedo, stored_at(in_slab(v))).r != 0u) return;
     Material m = materials[push.material];
     vec3 albedo = m.albedo.rgb;
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;

@@ -36,7 +36,7 @@ void main() {
             if (i == 13 || !in_grid(c)) continue;
             vec3 centre, half_size;
             texel_box(c, centre, half_size);
-            if (imageLoad(voxel_albedo, stored_at(c)).r == 0u &&
+            if (imageLoad(voxel_albedo, stored_at(in_slab(c))).r == 0u &&
                 triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, half_size)) {
                 write_voxel(c, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
             }

@@ -106,7 +106,7 @@ impl MemoryReport {
         if listed {
             let bricks = pool.map(|p| p.saturating_sub(1) as u64).or(resident.map(|r| r.bricks.len() as u64));
             let parents = super::occupancy::parent_list_bytes(grid.dims.into(), grid.mip_levels(), bricks);
-            let n = grid.longest();
+            let n = side;
             rows.push(MemoryRow {
                 name: "occupied texel lists (mips)",
                 extent: [parents as u32, 1, 1],
@@ -120,7 +120,7 @@ impl MemoryReport {
             extent: [occupied as u32, 1, 1],
             mips: 1,
             bytes: occupied,
-            cube_bytes: list((grid.longest() as u64).pow(3)),
+            cube_bytes: list((side as u64).pow(3)),
         });
         MemoryReport {
             dims: grid.dims.into(),

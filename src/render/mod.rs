@@ -465,7 +465,12 @@ impl Renderer {
         // A temporal filter still converging changes the volume every frame.
         let volume = volume_key(&u, self.voxelizer.sees_camera());
         self.volume_kept.update(volume, reuse && s.settings.gi.temporal >= 1.0);
-        self.voxels_kept.update(self.voxelizer.key(), reuse);
+        // A clipmap's levels each snap on their own: their every corner keys the voxels.
+        let mut voxels = self.voxelizer.key();
+        if let Some(c) = &self.voxels.grid.clip {
+            voxels.extend_from_slice(bytemuck::bytes_of(&c.origins));
+        }
+        self.voxels_kept.update(voxels, reuse);
     }
 
     /// Records one whole frame. The passes, in order:

@@ -333,7 +333,10 @@ impl App {
             KeyCode::KeyX => {
                 // Fitted, warped, clipmap (a clipmap is a cube around the camera: not with a
                 // following volume or given dims), and back.
-                let clip = crate::render::ClipOptions { levels: crate::voxel::clipmap::DEFAULT_LEVELS, extent: None };
+                // The clipmap given on the command line, else DEFAULT_LEVELS at the default extent.
+                let default =
+                    crate::render::ClipOptions { levels: crate::voxel::clipmap::DEFAULT_LEVELS, extent: None };
+                let clip = self.options.render.clipmap.unwrap_or(default);
                 let cube = options.follow.is_none() && options.dims.is_none();
                 (options.warp, options.clipmap) = match (options.warp, options.clipmap) {
                     (None, None) => (Some(crate::voxel::warp::THESIS_END_SLOPE), None),
@@ -446,7 +449,7 @@ impl App {
         }
         if frame > 0 && frame.is_multiple_of(SOAK_CYCLE / 2) {
             let mut o = r.renderer.options;
-            let n = r.renderer.voxels.grid.longest();
+            let n = r.renderer.voxels.grid.voxelized().longest();
             o.resolution = Some(if (frame / (SOAK_CYCLE / 2)) % 2 == 1 { n * 2 } else { n / 2 });
             Self::rebuild(r, o)?;
         }
@@ -550,7 +553,7 @@ impl App {
                 "vct — {:.1} fps — {} {}³ — GPU ms: {}",
                 r.fps,
                 r.renderer.options.method.label(),
-                r.renderer.voxels.grid.longest(),
+                r.renderer.voxels.grid.voxelized().longest(),
                 passes.join(", ")
             ));
             r.title_at = now;

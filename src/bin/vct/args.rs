@@ -170,7 +170,7 @@ pub struct SceneArgs {
     pub clipmap: Option<u32>,
     /// With --clipmap: the finest level's edge (world units); default: the coarsest level holds
     /// the whole scene around the camera.
-    #[arg(long, value_name = "EXTENT", value_parser = clip_extent)]
+    #[arg(long, value_name = "EXTENT", value_parser = clip_extent, requires = "clipmap")]
     pub clip_extent: Option<f32>,
     /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]

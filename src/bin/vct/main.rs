@@ -143,7 +143,7 @@ fn render(args: RenderArgs) -> Result<()> {
             "driver": ctx.info.driver,
             "voxelizer": renderer.options.method.label(),
             "tracing": format!("{:?}", options.tracing),
-            "resolution": renderer.voxels.grid.longest(),
+            "resolution": renderer.voxels.grid.voxelized().longest(),
             "dims": renderer.voxels.grid.dims.to_array(),
             "width": frame.width,
             "height": frame.height,
