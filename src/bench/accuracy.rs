@@ -214,6 +214,25 @@ impl Variant {
         Variant { name: format!("warp function {s}"), gi: gi.clone(), warp: Some(s), clipmap: None }
     }
 
+    /// `scene` with this variant's GI model, and the options that render it at `resolution`.
+    pub fn setup(&self, scene: &Scene, resolution: u32) -> (Scene, RenderOptions) {
+        let mut scene = scene.clone();
+        scene.settings.gi = self.gi.clone();
+        let mut options = RenderOptions {
+            method: harness_method(),
+            resolution: Some(self.clipmap.map_or(resolution, |(_, res)| res)),
+            warp: self.warp,
+            clipmap: self.clipmap.map(|(levels, _)| crate::render::ClipOptions { levels, extent: None }),
+            ..Default::default()
+        };
+        if self.warp.is_some() || self.clipmap.is_some() {
+            // A volume that follows the camera gets dense storage by default; this camera stands
+            // still, and the brick pool the fitted grid gets here keeps the memory comparable.
+            options.storage = crate::voxel::bricks::Storage::Sparse;
+        }
+        (scene, options)
+    }
+
     /// The scene's own model on `levels` clipmap levels of `res`³ voxels around the camera
     /// (`voxel::clipmap`, its default extent), in place of the fitted grid.
     pub fn clipped(gi: &GiFile, levels: u32, res: u32) -> Self {
@@ -264,20 +283,7 @@ pub fn measure(
     resolution: u32,
     frames: u32,
 ) -> Result<AccuracyRow> {
-    let mut scene = j.scene.clone();
-    scene.settings.gi = variant.gi.clone();
-    let mut options = RenderOptions {
-        method: harness_method(),
-        resolution: Some(variant.clipmap.map_or(resolution, |(_, res)| res)),
-        warp: variant.warp,
-        clipmap: variant.clipmap.map(|(levels, _)| crate::render::ClipOptions { levels, extent: None }),
-        ..Default::default()
-    };
-    if variant.warp.is_some() || variant.clipmap.is_some() {
-        // A warp that follows the camera gets dense storage by default; this camera stands
-        // still, and the brick pool the fitted grid gets here keeps the memory comparable.
-        options.storage = crate::voxel::bricks::Storage::Sparse;
-    }
+    let (scene, options) = variant.setup(&j.scene, resolution);
     let (ms, full, rgb, memory) = render_timed(ctx, &scene, options, frames)?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     let (flip, flip_map) = metrics::flip(&j.full_rgb, &rgb, w, h);
@@ -340,6 +346,35 @@ pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(
     };
     let (_, lin, rgb, _) = render_timed(ctx, &j.scene, options, 1)?;
     Ok((lin, rgb))
+}
+
+/// How much a slow pan changes the image where nothing in the scene moves (a seam at a clipmap
+/// level's border travelling with the camera, voxels regrouped as a volume steps): the camera
+/// slides sideways 3 cm a frame (as the stability bench's sliding volume) for `frames` frames,
+/// the volume following it as the viewer's does, and each frame is judged by FLIP against the
+/// one before. Returns the mean and the largest. A fitted grid's figure is what the view's own
+/// motion changes.
+pub fn pan_flip(ctx: &Arc<Context>, j: &Judged, variant: &Variant, resolution: u32, frames: u32) -> Result<(f64, f64)> {
+    let (scene, options) = variant.setup(&j.scene, resolution);
+    let mut r = Renderer::new(ctx, scene, options)?;
+    let mut previous: Option<Vec<u8>> = None;
+    let mut flips = Vec::new();
+    for _ in 0..frames.max(2) {
+        r.render()?;
+        let rgb = r.read_frame()?.rgb8();
+        if let Some(p) = &previous {
+            flips.push(metrics::flip(p, &rgb, r.targets.width, r.targets.height).0 as f64);
+        }
+        previous = Some(rgb);
+        let c = &mut r.scene.camera;
+        let side = (c.target - c.eye).cross(c.up).normalize_or_zero() * 0.03;
+        c.eye += side;
+        c.target += side;
+        let eye = c.eye;
+        r.follow(eye)?;
+    }
+    let mean = flips.iter().sum::<f64>() / flips.len() as f64;
+    Ok((mean, flips.iter().copied().fold(0.0, f64::max)))
 }
 
 /// The study's variants: the thesis' model, then each choice added in turn up to the default

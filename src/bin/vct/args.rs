@@ -117,6 +117,11 @@ pub struct BenchArgs {
     /// (none by default).
     #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = clip_layout)]
     pub clipmaps: Option<Vec<(u32, u32)>>,
+    /// With --layouts: also slide each variant's camera sideways 3 cm a frame for this many
+    /// frames and report the FLIP between adjacent frames (level seams, voxels regrouping;
+    /// pan.csv).
+    #[arg(long, requires = "layouts", value_name = "FRAMES", value_parser = clap::value_parser!(u32).range(2..=240))]
+    pub pan_frames: Option<u32>,
     /// With --study: only the variants whose name contains this text.
     #[arg(long, requires = "study", value_name = "TEXT")]
     pub only: Option<String>,

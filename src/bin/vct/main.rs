@@ -522,6 +522,7 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
     let cache = out.parent().unwrap_or(Path::new(".")).join("cache");
     let start = std::time::Instant::now();
     let mut rows = Vec::new();
+    let mut pans: Vec<String> = Vec::new();
     for (name, mut scene) in scenes {
         if let Some(b) = args.bounces {
             scene.settings.gi.bounces = b;
@@ -561,6 +562,15 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
                     "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}",
                     name, v.name, res, row.frame_ms, row.memory_mib, row.flip, row.flip_direct_only, row.mean_ratio
                 );
+                if let Some(frames) = args.pan_frames {
+                    let (mean, max) = accuracy::pan_flip(ctx, &judged, v, res, frames)
+                        .with_context(|| format!("panning {name} {} at {res}³", v.name))?;
+                    println!(
+                        "{:<20} {:<34} {:>4}³ pan: adjacent-frame FLIP mean {mean:.4}, max {max:.4}",
+                        name, v.name, res
+                    );
+                    pans.push(format!("{name},{},{res},{frames},{mean:.5},{max:.5}", v.name));
+                }
                 rows.push(row);
             }
         }
@@ -569,6 +579,13 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
     let dir = out.join("accuracy");
     for f in accuracy::write(&dir, &rows, args.study)? {
         println!("wrote {}", f.display());
+    }
+    if !pans.is_empty() {
+        let path = dir.join("pan.csv");
+        let csv =
+            format!("scene,variant,resolution,frames,adjacent_flip_mean,adjacent_flip_max\n{}\n", pans.join("\n"));
+        std::fs::write(&path, csv).with_context(|| format!("writing {}", path.display()))?;
+        println!("wrote {}", path.display());
     }
     println!("{}", accuracy::summary(&rows));
     println!("accuracy bench took {:.0} s", start.elapsed().as_secs_f64());
