@@ -39,13 +39,14 @@ for st in resident sparse dense; do
   step s1080-256-$st 30 $V render $SP --width 1920 --height 1080 --res 256 --storage $st $F --timings $W/r/s1080-256-$st.json --out $W/r/s1080-$st.png
 done
 step s360-128-warp 20 $V render $SP --res 128 --warp function $F --timings $W/r/s360-128-warp.json --out $W/r/x.png
+step s360-clip4x64 20 $V render $SP --clipmap 4 --res 64 --storage sparse $F --timings $W/r/s360-clip4x64.json --out $W/r/x.png
 # Frames in flight: the wall clock a frame, each waited for, and with one or two in flight.
 for k in 0 1 2; do a=""; [ $k -gt 0 ] && a="--in-flight $k"
   step s360-still-k$k 20 $V render $S --gi-scale 4 --gi-accumulate on --reuse-volume on --frames 300 $a --timings $W/r/s360-still-k$k.json --out $W/r/x.png
   grep '^wall' $W/r/s360-still-k$k.log
 done
 # Accuracy against the path tracer (references from .gpu/cache where their keys match).
-TAIL=16 step acc-layouts 90 $V bench --accuracy --given-only --layouts --spp 512 --res 64,128 --out $W/acc/lay $SP assets/scenes/sponza-arcade.toml assets/scenes/sponza-end.toml
+TAIL=16 step acc-layouts 90 $V bench --accuracy --given-only --layouts --clipmaps 2x64,4x64 --spp 512 --res 128 --out $W/acc/lay $SP assets/scenes/sponza-arcade.toml assets/scenes/sponza-end.toml
 TAIL=6 step acc-cornell 60 $V bench --accuracy --out $W/acc/corn
 # The voxelizer sweep and the stability regimes.
 TAIL=8 step bench 150 $V bench $SP --out $W/bench/main
