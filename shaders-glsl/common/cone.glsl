@@ -303,7 +303,7 @@ vec4 clip_read(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D at
 
 vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D atlas, bool aniso, vec3 uvw,
                 vec3 normal, vec3 dir, float tan_half, ConeParams p) {
-    int levels = clip_levels();
+    int levels = clip_count();
     vec3 g0 = uvw * frame.clip.y;
     // The start offsets are in texels of the finest level where the cone starts (at_start), or
     // of the level the start's own voxel is in, if coarser: a coarse voxel's centre may lie half

@@ -55,7 +55,7 @@ bool clip_on() {
     return CLIPPED && frame.clip.x > 0.5;
 }
 
-int clip_levels() {
+int clip_count() {
     return int(frame.clip.x);
 }
 
@@ -69,7 +69,7 @@ float clip_inside(vec3 g, int k) {
 // The finest level whose box holds grid point `g` (the coarsest if none does).
 int clip_level_of(vec3 g) {
     int k = 0;
-    while (k + 1 < clip_levels() && clip_inside(g, k) < 0.0) k++;
+    while (k + 1 < clip_count() && clip_inside(g, k) < 0.0) k++;
     return k;
 }
 

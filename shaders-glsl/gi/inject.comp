@@ -81,7 +81,7 @@ void main() {
     vec3 l_dir = uint(li.position.w) == LIGHT_DIRECTIONAL ? li.direction.xyz : normalize(p - li.position.xyz);
     // A clipmap's every level holding the point gets its light (a wide cone reads a coarse level
     // where finer ones also hold the point).
-    for (int k = 0; k < (clip_on() ? clip_levels() : 1); k++) inject_level(p, l_dir, j, k);
+    for (int k = 0; k < (clip_on() ? clip_count() : 1); k++) inject_level(p, l_dir, j, k);
 }
 
 // Lights the voxel of lit point `p` in level `level` (0: the grid).

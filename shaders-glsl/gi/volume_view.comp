@@ -26,7 +26,7 @@ void main() {
     // Clip the ray to the unit cube (a clipmap's coarsest level's box).
     vec3 lo = vec3(0.0), hi = vec3(1.0);
     if (clip_on()) {
-        vec4 l = frame.clip_levels[clip_levels() - 1];
+        vec4 l = frame.clip_levels[clip_count() - 1];
         lo = l.xyz / frame.clip.y;
         hi = lo + l.w;
     }

@@ -389,12 +389,9 @@ impl Voxelizer {
             Voxelizer::Raster(r) => &mut r.params,
             Voxelizer::Points(p) => &mut p.params,
         };
+        // A clipmap's stack grid has its level 0's origin and voxel: the draws of level 0 read
+        // what this writes (`Voxelizer::record` points each draw at its level).
         params.set_origin(grid);
-        // A clipmap's levels move together: level 0 moves whenever a coarser one does (each
-        // snaps to its own voxel, a multiple of level 0's), so its origin keys them all.
-        if let Some(clip) = &grid.clip {
-            params.set_level(clip, 0);
-        }
     }
 
     /// The camera this frame is seen from (the point voxelizer's refinement writes what it sees).
