@@ -48,6 +48,7 @@ struct ConeParams {
     float normal_fine; // texels per grid voxel along the normal where the cone starts (at_start)
     int start_level;   // a clipmap's level whose texels the start offsets are in, at the least (a
                        // voxel's gather: its own level's; 0: the finest that holds the start)
+    mat4 warp_proj;    // a perspective warp's grid fraction to texture fraction (common/warp.glsl)
 };
 
 // Level 0 at `pos`, trilinearly filtered (common/level0.glsl, or the includer's own).
@@ -94,7 +95,11 @@ float self_clamp_level(float height, float surface) {
 ConeParams at_start(ConeParams p, vec3 uvw, vec3 normal) {
     if (warp_on(p.warp)) {
         vec3 n = abs(normal);
-        float deep = dot(n, 1.0 / warp_slope(uvw, p.warp)) / max(n.x + n.y + n.z, 1e-6);
+        // A perspective texel is a slanted cell, far ones several times deeper than wide: how far
+        // along the normal the point moves one texel on the axis it crosses fastest.
+        vec3 across = warp_projective(p.warp) ? abs(warp_project_along(uvw, normal, p.dims, p.warp_proj)) : vec3(0.0);
+        float deep = warp_projective(p.warp) ? 1.0 / max(max(across.x, across.y), max(across.z, 1e-6))
+                                             : dot(n, 1.0 / warp_slope(uvw, p.warp)) / max(n.x + n.y + n.z, 1e-6);
         p.bias *= deep;
         p.start *= deep;
         p.normal_fine = 1.0 / deep;
@@ -115,7 +120,7 @@ bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, Cone
                  out float level, out float step) {
     pos = start + m.dist * dir / p.dims;
     // Texels per grid voxel here (1 unwarped).
-    float fine = warp_on(p.warp) ? warp_mean_slope(pos, p.warp) : 1.0;
+    float fine = warp_on(p.warp) ? warp_local_slope(pos, p.warp, p.warp_proj) : 1.0;
     float diameter = max(2.0 * m.dist * tan_half * fine, 1.0);
     float l = log2(diameter) + p.lod_offset;
     if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) {
@@ -130,6 +135,13 @@ bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, Cone
     // of every texel on the boundary, so walls the grid is fitted to lost a fifth of their light.
     vec3 reach = 0.5 * exp2(level) / fine / p.dims;
     bool inside = all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
+    if (warp_projective(p.warp)) {
+        // The texels fill the frustum, not the grid's box: inside is among them (the frustum is
+        // convex, so a cone that leaves it does not come back).
+        pos = warp_project(pos, p.warp, p.warp_proj);
+        reach = 0.5 * exp2(level) / p.dims;
+        return all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
+    }
     if (warp_on(p.warp)) pos = warp_forward(pos, p.warp);
     return inside;
 }

@@ -38,6 +38,8 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
                              // frame; z: a history to accumulate with (1) or none (0);
                              // w: the camera moved since the last frame (1)
     vec4 voxel_warp;         // the grid's warp (common/warp.glsl): xyz centre, w end slope (1: none)
+    mat4 voxel_warp_proj;    // a perspective warp's grid fraction to texture fraction (homogeneous)
+    mat4 voxel_warp_unproj;  // and back
     vec4 clip;               // a clipmap (voxel::clipmap): x levels (0: none), y a level's side (texels),
                              // z the blend band (of a level's side)
     vec4 clip_levels[MAX_CLIP_LEVELS]; // each level's minimum corner (xyz, voxels of level 0 from
@@ -100,7 +102,7 @@ vec3 world_to_grid(vec3 p) {
 vec3 grid_to_texel(vec3 g) {
     if (clip_on()) return clip_texel(g, clip_level_of(g));
     if (!warp_on(frame.voxel_warp)) return g;
-    return warp_forward(g / frame.voxel_dims.xyz, frame.voxel_warp) * frame.voxel_dims.xyz;
+    return warp_to_texture(g / frame.voxel_dims.xyz, frame.voxel_warp, frame.voxel_warp_proj) * frame.voxel_dims.xyz;
 }
 
 // World position to texel coordinates.
@@ -127,7 +129,7 @@ vec3 texel_centre_march(ivec3 v) {
         return (l.xyz + (vec3(v - ivec3(0, 0, k * int(frame.clip.y))) + 0.5) * l.w) / frame.clip.y;
     }
     vec3 w = (vec3(v) + 0.5) / frame.voxel_dims.xyz;
-    return warp_on(frame.voxel_warp) ? warp_inverse(w, frame.voxel_warp) : w;
+    return warp_on(frame.voxel_warp) ? warp_to_grid(w, frame.voxel_warp, frame.voxel_warp_unproj) : w;
 }
 
 // The world position of texel `v`'s centre.

@@ -15,7 +15,7 @@
 ConeParams frame_cone_params() {
     return ConeParams(int(frame.cone.x), frame.cone.y, frame.cone.z, frame.cone.w, frame.voxel_dims.xyz,
                       frame.voxel_grid.y - 1.0, frame.cone_model.y, uint(frame.cone_model.z), 0.5,
-                      frame.aniso_atlas.xyz, 0.0, frame.voxel_warp, 1.0, 0);
+                      frame.aniso_atlas.xyz, 0.0, frame.voxel_warp, 1.0, 0, frame.voxel_warp_proj);
 }
 
 vec4 trace_frame_cone(vec3 uvw, vec3 n, vec3 dir, float tan_half, ConeParams p) {

@@ -75,7 +75,7 @@ vec3 facing_normal(vec3 n, vec3 world) {
 // they are coarser (4 times: full red). In a clipmap, the finest level holding the point, where
 // its cones start: green in level 0, through to full red in the coarsest.
 vec3 texel_size_colour(vec3 world) {
-    float t = warp_on(frame.voxel_warp) ? log2(warp_mean_slope(world_to_march(world), frame.voxel_warp)) : 0.0;
+    float t = warp_on(frame.voxel_warp) ? log2(warp_local_slope(world_to_march(world), frame.voxel_warp, frame.voxel_warp_proj)) : 0.0;
     if (clip_on()) t = -2.0 * float(clip_level_of(world_to_grid(world))) / max(frame.clip.x - 1.0, 1.0);
     vec3 even = vec3(0.1, 0.8, 0.1);
     return t >= 0.0 ? mix(even, vec3(0.1, 0.2, 1.0), min(t / log2(1.5), 1.0)) : mix(even, vec3(1.0, 0.1, 0.1), min(-t / 2.0, 1.0));

@@ -14,6 +14,7 @@ layout(set = 2, binding = 0) uniform VoxelParams {
     uvec4 dims;         // xyz: voxels along each axis
     mat4 camera;        // world to clip: the view the point voxelizer's refinement sees
     vec4 warp;          // the grid's warp (common/warp.glsl): xyz centre, w end slope (1: none)
+    mat4 warp_proj;     // a perspective warp's grid fraction to texture fraction (homogeneous)
 } voxel;
 
 // Whether voxel `coord` lies inside the grid.
@@ -45,7 +46,7 @@ vec3 to_grid_space(vec3 world) {
 vec3 grid_to_voxel_space(vec3 g) {
     if (!warp_on(voxel.warp)) return g;
     vec3 n = vec3(voxel.dims.xyz);
-    return warp_forward(g / n, voxel.warp) * n;
+    return warp_to_texture(g / n, voxel.warp, voxel.warp_proj) * n;
 }
 
 // World position to texel coordinates.
@@ -53,8 +54,9 @@ vec3 to_voxel_space(vec3 world) {
     return grid_to_voxel_space(to_grid_space(world));
 }
 
-// Texel `v`'s box in grid coordinates: its centre and half size (a warped texel is a box of its
-// own size, each axis being warped on its own).
+// Texel `v`'s box in grid coordinates: its centre and half size (a function-warped texel is a
+// box of its own size, each axis being warped on its own; not for the perspective warp, whose
+// voxelizers work among the texels).
 void texel_box(ivec3 v, out vec3 centre, out vec3 half_size) {
     if (!warp_on(voxel.warp)) {
         centre = vec3(v) + 0.5;

@@ -1,7 +1,11 @@
-// Voxel warping by a function (Freed 2018 §4.6.1), the shaders' copy of `voxel::warp`: each
-// axis's grid fraction x maps to a texture fraction by the thesis' cubic, its slope peaking at
-// the camera's fraction c and falling to the end slope a at the grid's faces (a = 1: no warp).
-// `warp` is a vec4: xyz the centre c per axis, w the end slope a.
+// Voxel warping, the shaders' copy of `voxel::warp` and `voxel::perspective`.
+// By a function (Freed 2018 §4.6.1): each axis's grid fraction x maps to a texture fraction by
+// the thesis' cubic, its slope peaking at the camera's fraction c and falling to the end slope a
+// at the grid's faces (a = 1: no warp). `warp` is a vec4: xyz the centre c per axis, w the end
+// slope a.
+// By perspective (§4.6.2, made projective): texture fraction = (H x).xyz / (H x).w, H a mat4
+// (`proj`, its inverse `unproj`) whose w is the distance from the frustum's apex. `warp` then
+// holds x the peak slope, y the cube root of |det H|, z the w triangles are clipped at, w = 0.
 #ifndef VCT_WARP_GLSL
 #define VCT_WARP_GLSL
 #include "config.h"
@@ -14,9 +18,39 @@ bool warp_on(vec4 warp) {
     return WARPED && warp.w < 1.0;
 }
 
-// The largest slope (at the centre): texels per grid voxel where they are finest (1: no warp).
+// The perspective warp: a projective map, not axis by axis.
+bool warp_projective(vec4 warp) {
+    return WARPED && warp.w <= 0.0;
+}
+
+// The function warp: each axis on its own, a texel a box of the unwarped grid.
+bool warp_separable(vec4 warp) {
+    return warp_on(warp) && warp.w > 0.0;
+}
+
+// Texels per grid voxel where they are finest (1: no warp): the function's centre, the
+// perspective's near plane.
 float warp_peak_slope(vec4 warp) {
-    return 1.5 - 0.5 * min(warp.w, 1.0);
+    return warp.w <= 0.0 ? warp.x : 1.5 - 0.5 * min(warp.w, 1.0);
+}
+
+// The perspective warp's homogeneous texture fraction of grid fraction `x`.
+vec4 warp_project_h(vec3 x, mat4 proj) {
+    return proj * vec4(x, 1.0);
+}
+
+// The perspective warp's texture fraction of grid fraction `x`; far outside the texels (-4)
+// within the clip distance of the apex or behind it.
+vec3 warp_project(vec3 x, vec4 warp, mat4 proj) {
+    vec4 q = warp_project_h(x, proj);
+    return q.w > warp.z ? q.xyz / q.w : vec3(-4.0);
+}
+
+// The perspective warp's texels per grid voxel at grid fraction `x`, as one size: the cube
+// root of the map's Jacobian determinant, |det H| / w^4.
+float warp_project_slope(vec3 x, vec4 warp, mat4 proj) {
+    float w = max(warp_project_h(x, proj).w, warp.z);
+    return warp.y / pow(w, 4.0 / 3.0);
 }
 
 // One side's half-cubic: h(0) = 0, h(1) = 1, slope a at 0 and 1.5 - a/2 at 1.
@@ -73,6 +107,34 @@ vec3 warp_inverse(vec3 w, vec4 warp) {
     vec3 inside = mix(above, below, lessThan(w, c));
     vec3 outside = mix(1.0 + (w - 1.0) / a, w / a, lessThan(w, vec3(0.0)));
     return mix(outside, inside, vec3(greaterThanEqual(w, vec3(0.0))) * vec3(lessThanEqual(w, vec3(1.0))));
+}
+
+// The perspective warp's texels crossed per grid voxel moving along unit direction `n` from grid
+// fraction `x` (each axis; `dims` the texel counts, which grid voxels share): the map's Jacobian,
+// (H3 m - t (h_w . m)) / w for m = n / dims, t the texture fraction and h_w H's bottom row.
+vec3 warp_project_along(vec3 x, vec3 n, vec3 dims, mat4 proj) {
+    vec4 q = warp_project_h(x, proj);
+    vec4 dq = proj * vec4(n / dims, 0.0);
+    return dims * (dq.xyz - q.xyz / q.w * dq.w) / q.w;
+}
+
+// Texture fraction of grid fraction `x`, by either warp.
+vec3 warp_to_texture(vec3 x, vec4 warp, mat4 proj) {
+    return warp_projective(warp) ? warp_project(x, warp, proj) : warp_forward(x, warp);
+}
+
+// Grid fraction of texture fraction `w`, by either warp (`unproj`: the perspective's inverse).
+vec3 warp_to_grid(vec3 w, vec4 warp, mat4 unproj) {
+    if (warp_projective(warp)) {
+        vec4 q = unproj * vec4(w, 1.0);
+        return q.xyz / q.w;
+    }
+    return warp_inverse(w, warp);
+}
+
+// Texels per grid voxel at grid fraction `x`, as one size, by either warp.
+float warp_local_slope(vec3 x, vec4 warp, mat4 proj) {
+    return warp_projective(warp) ? warp_project_slope(x, warp, proj) : warp_mean_slope(x, warp);
 }
 
 #endif

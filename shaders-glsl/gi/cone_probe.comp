@@ -31,6 +31,6 @@ void main() {
     Probe p = probes[i];
     ConeParams params =
         ConeParams(push.steps, push.bias, push.start, push.lod_offset, vec3(push.resolution), push.max_level, push.step,
-                   push.flags, 0.5, vec3(0.0), 1.0, vec4(0.5, 0.5, 0.5, 1.0), 1.0, 0);  // isotropic, unwarped
+                   push.flags, 0.5, vec3(0.0), 1.0, vec4(0.5, 0.5, 0.5, 1.0), 1.0, 0, mat4(1.0));  // isotropic, unwarped
     results[i] = trace_cone(volume, p.uvw_aperture.xyz, p.normal.xyz, p.dir.xyz, p.uvw_aperture.w, params);
 }

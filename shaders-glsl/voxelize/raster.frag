@@ -9,7 +9,8 @@
 // In a warped grid (Freed 2018 §4.6.1) the pixel is a box of the unwarped grid, and the texels
 // tested are those its box (over the plane's depth span) warps onto, each as the box it is in
 // the unwarped grid: coverage stays exact however the warp stretches texels, where the thesis
-// raised the viewport resolution by the warp's largest slope and still sampled points.
+// raised the viewport resolution by the warp's largest slope and still sampled points. A
+// perspective warp's triangles arrive among the texels (raster.geom): the even grid's path.
 #include "frame.glsl"
 #include "material_textures.glsl"
 #include "voxel.glsl"
@@ -77,13 +78,13 @@ void main() {
     if (m.tex.x == HAS_TEXTURE) albedo *= texture(albedo_texture, in_uv).rgb;
     if ((voxel.grid.y & VOXEL_FLAG_DEPTH_SPAN) == 0u) {
         float z = plane_depth(gl_FragCoord.xy / scale);
-        vec3 at = warp_on(voxel.warp)
+        vec3 at = warp_separable(voxel.warp)
                       ? floor(swizzle(grid_to_voxel_space(unswizzle(vec3(gl_FragCoord.xy / scale, z), in_axis)), in_axis))
                       : vec3(xy, floor(z));
         write_voxel(ivec3(unswizzle(at, in_axis)), voxel_albedo_of(m, albedo), in_normal, voxel_emission_of(m));
         return;
     }
-    if (warp_on(voxel.warp)) {
+    if (warp_separable(voxel.warp)) {
         // The pixel's box and the plane's depth over it (dominant axis: slopes are <= 1; a
         // triangle too thin for its plane spans its whole depth range).
         vec2 lo = floor(gl_FragCoord.xy) / scale, hi = lo + 1.0 / scale;

@@ -3,7 +3,10 @@
 // triangle orthographically along the dominant axis of its face normal, computed from its
 // edges (vertex normals can cancel), onto an N x N (times the viewport scale) attachment-less
 // framebuffer. The fragment stage takes the voxel depth from the triangle's plane. It works in
-// the unwarped grid, where the triangle is flat; the fragment stage finds a warped grid's texels.
+// the unwarped grid, where the triangle is flat; the fragment stage finds a function-warped
+// grid's texels. A perspective warp (§4.6.2, made projective: voxel::perspective) keeps
+// triangles flat among its texels, so there the triangle is mapped to them, clipped first where
+// it reaches behind the apex (a quad is left: two triangles), and voxelized as on an even grid.
 //
 // With VOXEL_FLAG_CONSERVATIVE the projected triangle is grown so that every pixel it touches
 // gets a fragment (Hasselgren, Akenine-Moeller & Ohlsson 2005, GPU Gems 2 ch. 42; Crassin &
@@ -16,7 +19,7 @@
 #include "voxel.glsl"
 
 layout(triangles) in;
-layout(triangle_strip, max_vertices = 4) out;
+layout(triangle_strip, max_vertices = 8) out;
 
 layout(location = 0) in vec3 in_world[];
 layout(location = 1) in vec3 in_normal[];
@@ -58,13 +61,8 @@ void emit(vec2 px, vec3 b, float scale, float res) {
     EmitVertex();
 }
 
-void main() {
-    vec3 p[3];
-    for (int i = 0; i < 3; i++) {
-        p[i] = to_grid_space(in_world[i]);  // a warped grid's texels are found per fragment
-        nrm[i] = in_normal[i];
-        uv[i] = in_uv[i];
-    }
+// Voxelizes triangle `p` (grid or texel coordinates; attributes in nrm and uv).
+void voxelize(vec3 p[3]) {
     vec3 n = abs(cross(p[1] - p[0], p[2] - p[0]));
     axis = (n.x >= n.y && n.x >= n.z) ? 0u : (n.y >= n.z ? 1u : 2u);
     float res = float(voxel.grid.x);
@@ -133,4 +131,51 @@ void main() {
         emit(corner[i], vec3(1.0 - b1 - b2, b1, b2), scale, res);
     }
     EndPrimitive();
+}
+
+// A clipped polygon's corner: homogeneous texture fraction and attributes.
+struct Corner {
+    vec4 h;
+    vec3 normal;
+    vec2 uv;
+};
+
+void main() {
+    vec3 p[3];
+    if (!warp_projective(voxel.warp)) {
+        for (int i = 0; i < 3; i++) {
+            p[i] = to_grid_space(in_world[i]);  // a function-warped grid's texels are found per fragment
+            nrm[i] = in_normal[i];
+            uv[i] = in_uv[i];
+        }
+        voxelize(p);
+        return;
+    }
+    // Perspective: clip against w >= the clip distance (no texel lies nearer the apex), then
+    // map each corner among the texels.
+    vec3 dims = vec3(voxel.dims.xyz);
+    Corner c[3];
+    for (int i = 0; i < 3; i++) {
+        c[i] = Corner(warp_project_h(to_grid_space(in_world[i]) / dims, voxel.warp_proj), in_normal[i], in_uv[i]);
+    }
+    Corner poly[4];
+    int count = 0;
+    for (int i = 0; i < 3; i++) {
+        Corner a = c[i], b = c[(i + 1) % 3];
+        float da = a.h.w - voxel.warp.z, db = b.h.w - voxel.warp.z;
+        if (da >= 0.0) poly[count++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) {
+            float t = da / (da - db);
+            poly[count++] = Corner(mix(a.h, b.h, t), mix(a.normal, b.normal, t), mix(a.uv, b.uv, t));
+        }
+    }
+    for (int first = 1; first + 1 < count; first++) {
+        int k[3] = int[3](0, first, first + 1);
+        for (int i = 0; i < 3; i++) {
+            p[i] = poly[k[i]].h.xyz / poly[k[i]].h.w * dims;
+            nrm[i] = poly[k[i]].normal;
+            uv[i] = poly[k[i]].uv;
+        }
+        voxelize(p);
+    }
 }

@@ -35,6 +35,23 @@ void main() {
         vec3 p0 = to_grid_space(in_world[0]) * fine;
         vec3 p1 = to_grid_space(in_world[1]) * fine;
         vec3 p2 = to_grid_space(in_world[2]) * fine;
+        if (warp_projective(voxel.warp)) {
+            // Among the texels, where the triangle stays flat, unless it reaches behind the
+            // apex's clip plane (then at the finest texels' size, as above).
+            vec3 n = vec3(voxel.dims.xyz);
+            vec4 h0 = warp_project_h(to_grid_space(in_world[0]) / n, voxel.warp_proj);
+            vec4 h1 = warp_project_h(to_grid_space(in_world[1]) / n, voxel.warp_proj);
+            vec4 h2 = warp_project_h(to_grid_space(in_world[2]) / n, voxel.warp_proj);
+            float near = min(h0.w, min(h1.w, h2.w));
+            if (near > voxel.warp.z) {
+                // Even steps along the triangle stretch among the texels by up to the ratio of
+                // its corners' distances from the apex, where it is nearest: as much finer.
+                float stretch = max(h0.w, max(h1.w, h2.w)) / near;
+                p0 = h0.xyz / h0.w * n * stretch;
+                p1 = h1.xyz / h1.w * n * stretch;
+                p2 = h2.xyz / h2.w * n * stretch;
+            }
+        }
         // Outer level i belongs to the edge opposite vertex i.
         gl_TessLevelOuter[0] = level(max3(abs(p2 - p1)));
         gl_TessLevelOuter[1] = level(max3(abs(p0 - p2)));

@@ -29,15 +29,38 @@ void main() {
     ivec3 own = ivec3(floor(to_voxel_space(world)));
     write_voxel(own, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
     if ((voxel.grid.y & VOXEL_FLAG_NEIGHBOURS) != 0u) {
-        // In the unwarped grid, each texel as its own box there (a warped one's is not a unit cube).
-        vec3 p0 = to_grid_space(in_world[0]), p1 = to_grid_space(in_world[1]), p2 = to_grid_space(in_world[2]);
-        for (int i = 0; i < 27; i++) {
+        // In the unwarped grid, each texel as its own box there (a warped one's is not a unit
+        // cube); a perspective warp's texels are unit cubes among the texels, where the triangle
+        // is flat once clipped where it reaches behind the apex (then a quad: two triangles).
+        vec3 t[4];
+        t[0] = to_grid_space(in_world[0]);
+        t[1] = to_grid_space(in_world[1]);
+        t[2] = to_grid_space(in_world[2]);
+        t[3] = t[2];
+        bool projective = warp_projective(voxel.warp), fill = true;
+        if (projective) {
+            vec3 n = vec3(voxel.dims.xyz);
+            vec4 h[3], poly[4];
+            for (int k = 0; k < 3; k++) h[k] = warp_project_h(t[k] / n, voxel.warp_proj);
+            int count = 0;
+            for (int k = 0; k < 3; k++) {
+                vec4 a = h[k], b = h[(k + 1) % 3];
+                float da = a.w - voxel.warp.z, db = b.w - voxel.warp.z;
+                if (da >= 0.0) poly[count++] = a;
+                if ((da >= 0.0) != (db >= 0.0)) poly[count++] = mix(a, b, da / (da - db));
+            }
+            fill = count >= 3;  // none of it in front of the clip plane: no texel to fill
+            for (int k = 0; k < 4 && fill; k++) t[k] = poly[min(k, count - 1)].xyz / poly[min(k, count - 1)].w * n;
+        }
+        for (int i = 0; i < 27 && fill; i++) {
             ivec3 c = own + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;
             if (i == 13 || !in_grid(c)) continue;
-            vec3 centre, half_size;
-            texel_box(c, centre, half_size);
-            if (imageLoad(voxel_albedo, stored_at(in_slab(c))).r == 0u &&
-                triangle_box_overlap(p0 - centre, p1 - centre, p2 - centre, half_size)) {
+            vec3 centre = vec3(c) + 0.5, half_size = vec3(0.5);
+            if (!projective) texel_box(c, centre, half_size);
+            // The second triangle of a clipped quad (a triangle's own again otherwise).
+            bool meets = triangle_box_overlap(t[0] - centre, t[1] - centre, t[2] - centre, half_size) ||
+                         (projective && triangle_box_overlap(t[0] - centre, t[2] - centre, t[3] - centre, half_size));
+            if (imageLoad(voxel_albedo, stored_at(in_slab(c))).r == 0u && meets) {
                 write_voxel(c, voxel_albedo_of(m, albedo), normal, voxel_emission_of(m));
             }
         }

@@ -6,6 +6,7 @@
 //! over the reference's, and each region's indirect light (full minus direct, on both sides)
 //! over the reference's. The study's variants are the model choices the docs chart.
 
+use crate::voxel::warp::WarpChoice;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -196,7 +197,7 @@ pub struct Variant {
     pub name: String,
     pub gi: GiFile,
     /// Warp the grid (`RenderOptions::warp`): the same voxels, finest at the camera.
-    pub warp: Option<f32>,
+    pub warp: Option<WarpChoice>,
     /// Clipmap levels around the camera instead of the fitted grid (`RenderOptions::clipmap`),
     /// and their voxels along each axis.
     pub clipmap: Option<(u32, u32)>,
@@ -211,7 +212,13 @@ impl Variant {
     /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
     /// with end slope `s`, at the same voxel count.
     pub fn warped(gi: &GiFile, s: f32) -> Self {
-        Variant { name: format!("warp function {s}"), gi: gi.clone(), warp: Some(s), clipmap: None }
+        Self::warped_by(gi, WarpChoice::Function(s))
+    }
+
+    /// The scene's own model with the voxels warped as `warp` says (the function, §4.6.1, or the
+    /// perspective, §4.6.2), at the same voxel count.
+    pub fn warped_by(gi: &GiFile, warp: WarpChoice) -> Self {
+        Variant { name: warp.label(), gi: gi.clone(), warp: Some(warp), clipmap: None }
     }
 
     /// `scene` with this variant's GI model, and the options that render it at `resolution`.

@@ -337,9 +337,9 @@ pub enum Motion {
 pub enum Layout {
     /// One grid: fitted to the scene, or the 4 m volume that slides.
     Even,
-    /// Warped by the thesis' function with this end slope (Freed 2018 §4.6.1), its finest texels
-    /// following the moving point or camera.
-    Warped(f32),
+    /// Warped (Freed 2018 §4.6.1 or §4.6.2), its finest texels following the moving point or
+    /// camera.
+    Warped(crate::voxel::warp::WarpChoice),
     /// Clipmap levels of 32³ around the moving point (the finest 4 m, as the single sliding
     /// volume) or the camera (the coarsest holding the room).
     Clipmap(u32),
@@ -423,7 +423,7 @@ pub fn flicker(
 /// Regime 4: temporal flicker.
 pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
     let full = (1, false);
-    let warp = Layout::Warped(crate::voxel::warp::THESIS_END_SLOPE);
+    let warp = Layout::Warped(crate::voxel::warp::WarpChoice::Function(crate::voxel::warp::THESIS_END_SLOPE));
     let even = Layout::Even;
     let configs = [
         ("sliding volume", Motion::Volume { snap: false }, 1.0, full, even),

@@ -10,6 +10,10 @@
 //! A warped grid (Freed 2018 §4.6.1) warps each axis on its own, so its voxels are still boxes,
 //! each of its own size: the reference finds their faces by inverting the thesis' cubic by
 //! bisection (its own code, not `voxel::warp`'s), and `eps` is then a fraction of each voxel.
+//! A perspective-warped grid (§4.6.2) is a projective map, under which a triangle stays a
+//! triangle: the reference clips each triangle at the map's apex side and maps it among the
+//! texels with its own code, reading the grid's matrix as plain numbers, and covers it there as
+//! on an even grid of unit voxels.
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -22,6 +26,42 @@ pub struct RefGrid {
     pub voxel: f32,
     pub dims: [u32; 3],
     pub warp: Option<RefWarp>,
+    pub perspective: Option<RefPerspective>,
+}
+
+/// A projective map of world space onto texel coordinates (texel v spans [v, v + 1)):
+/// t = (M p).xyz / (M p).w, defined where (M p).w exceeds `clip` (no texel lies nearer).
+#[derive(Clone, Copy, Debug)]
+pub struct RefPerspective {
+    pub world_to_texel: glam::DMat4,
+    pub clip: f64,
+}
+
+impl RefPerspective {
+    /// The triangles among the texels: each clipped at w = clip (the part beyond, a triangle
+    /// or a quad, as one or two triangles), then divided by w.
+    pub fn map(&self, triangles: &[[Vec3; 3]]) -> Vec<[Vec3; 3]> {
+        let mut out = Vec::with_capacity(triangles.len());
+        for t in triangles {
+            let h: Vec<glam::DVec4> = t.iter().map(|p| self.world_to_texel * p.as_dvec3().extend(1.0)).collect();
+            let mut poly = Vec::with_capacity(4);
+            for i in 0..3 {
+                let (a, b) = (h[i], h[(i + 1) % 3]);
+                let (da, db) = (a.w - self.clip, b.w - self.clip);
+                if da >= 0.0 {
+                    poly.push(a);
+                }
+                if (da >= 0.0) != (db >= 0.0) {
+                    poly.push(a + (b - a) * (da / (da - db)));
+                }
+            }
+            let texel = |q: glam::DVec4| (q.truncate() / q.w).as_vec3();
+            for k in 1..poly.len().saturating_sub(1) {
+                out.push([texel(poly[0]), texel(poly[k]), texel(poly[k + 1])]);
+            }
+        }
+        out
+    }
 }
 
 /// The thesis' warp (§4.6.1) with its peak at grid fraction `centre` and slope `end_slope` at
@@ -135,10 +175,22 @@ fn boundary_plane(p: &[DVec3; 3], faces: &[Vec<f64>; 3], eps: f64) -> Option<(us
 impl RefGrid {
     /// The same grid as a renderer's (its origin, voxel size and dims, read as plain numbers).
     pub fn matching(grid: &crate::voxel::VoxelGrid) -> Self {
-        let w = grid.warp;
-        let warp =
-            (w.end_slope < 1.0).then(|| RefWarp { centre: w.centre.as_dvec3().into(), end_slope: w.end_slope as f64 });
-        RefGrid { origin: grid.origin, voxel: grid.voxel, dims: grid.dims.into(), warp }
+        use crate::voxel::warp::Warp;
+        let (mut warp, mut perspective) = (None, None);
+        match grid.warp {
+            Warp::Function(w) if w.end_slope < 1.0 => {
+                warp = Some(RefWarp { centre: w.centre.as_dvec3().into(), end_slope: w.end_slope as f64 })
+            }
+            Warp::Perspective(p) => {
+                // World to grid fraction, the grid's map to texture fractions, then to texels.
+                let size = grid.dims.as_dvec3() * grid.voxel as f64;
+                let to_fraction = glam::DMat4::from_scale(1.0 / size) * glam::DMat4::from_translation(-grid.origin.as_dvec3());
+                let world_to_texel = glam::DMat4::from_scale(grid.dims.as_dvec3()) * p.to_texel * to_fraction;
+                perspective = Some(RefPerspective { world_to_texel, clip: 0.5 * p.near });
+            }
+            _ => {}
+        }
+        RefGrid { origin: grid.origin, voxel: grid.voxel, dims: grid.dims.into(), warp, perspective }
     }
 
     /// The faces of the voxels along each axis, in voxels of the unwarped grid (0, 1, .., n
@@ -162,6 +214,10 @@ impl RefGrid {
 
     /// Voxels each triangle touches; `eps` is the fairness margin in voxels (e.g. 0.001).
     pub fn coverage(&self, triangles: &[[Vec3; 3]], eps: f64) -> Coverage {
+        if let Some(p) = self.perspective {
+            let among = RefGrid { origin: Vec3::ZERO, voxel: 1.0, dims: self.dims, warp: None, perspective: None };
+            return among.coverage(&p.map(triangles), eps);
+        }
         let n = self.dims.map(|d| d as i64);
         let len = self.dims.iter().map(|&d| d as usize).product();
         let faces = self.faces();
@@ -300,7 +356,7 @@ mod tests {
     use super::*;
 
     fn grid(n: u32) -> RefGrid {
-        RefGrid { origin: Vec3::ZERO, voxel: 1.0, dims: [n; 3], warp: None }
+        RefGrid { origin: Vec3::ZERO, voxel: 1.0, dims: [n; 3], warp: None, perspective: None }
     }
 
     #[test]

@@ -21,7 +21,11 @@ impl RefGrid {
         let bvh = Bvh::new(triangles.to_vec());
         let n = DVec3::from(self.dims.map(|d| d as f64));
         // The voxel that grid coordinate `x` along `a` lies in (a warped grid's by its faces).
-        let faces = self.faces();
+        let faces = if self.perspective.is_some() {
+            std::array::from_fn(|a| (0..=self.dims[a]).map(f64::from).collect())
+        } else {
+            self.faces()
+        };
         let cell = |v: DVec3| {
             DVec3::from(std::array::from_fn::<f64, 3, _>(|a| faces[a].partition_point(|&f| f <= v[a]) as f64 - 1.0))
         };
@@ -29,7 +33,18 @@ impl RefGrid {
             for x in 0..camera.width {
                 let (o, d) = camera.ray(x as f32, y as f32);
                 let Some(hit) = bvh.intersect(o, d, 0.0, f32::INFINITY, false) else { continue };
-                let q = ((o + d * hit.t - self.origin) / self.voxel).as_dvec3();
+                let at_hit = o + d * hit.t;
+                let q = match self.perspective {
+                    // A perspective grid's texels are unit cells among the texels (coverage.rs).
+                    Some(p) => {
+                        let h = p.world_to_texel * at_hit.as_dvec3().extend(1.0);
+                        if h.w <= p.clip {
+                            continue;
+                        }
+                        h.truncate() / h.w
+                    }
+                    None => ((at_hit - self.origin) / self.voxel).as_dvec3(),
+                };
                 let (lo, hi) = (cell(q - eps), cell(q + eps));
                 if lo.cmplt(DVec3::ZERO).any() || hi.cmpge(n).any() {
                     continue;

@@ -272,6 +272,8 @@ impl FrameUniforms {
             previous_view_proj: f.previous_view_proj.unwrap_or(view_proj),
             gi_jitter: f.gi_jitter,
             voxel_warp: f.grid.warp.gpu(),
+            voxel_warp_proj: f.grid.warp.proj(),
+            voxel_warp_unproj: f.grid.warp.unproj(),
             clip,
             clip_levels,
         }

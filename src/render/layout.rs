@@ -1,5 +1,5 @@
 //! The volume's layout, one of the design card's siblings: a grid fitted to the scene, a cube
-//! following the camera (Freed 2018 §4.1), a warped grid (§4.6.1) or clipmap levels around the
+//! following the camera (Freed 2018 §4.1), a warped grid (§4.6.1, §4.6.2) or clipmap levels around the
 //! camera (Wicked Engine's VXGI; §2.3.2). Which grid a renderer's options ask for, and what each
 //! layout cannot be combined with.
 
@@ -37,8 +37,11 @@ pub fn grid_for(ctx: &Context, scene: &Scene, options: &RenderOptions, resolutio
         (Some(f), None) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
         (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
     };
+    if let (Some(crate::voxel::warp::WarpChoice::Perspective(_)), Some(_)) = (options.warp, options.follow) {
+        return Err(crate::Error::param("warp", "a perspective warp spans the camera's frustum: --follow does not apply"));
+    }
     let grid = match options.warp {
-        Some(end_slope) => grid.warped(scene.camera.eye, end_slope)?,
+        Some(w) => w.apply(grid, &scene.camera, &scene.mesh.bounds)?,
         None => grid,
     };
     if options.warp.is_some() && scene.settings.gi.temporal < 1.0 {

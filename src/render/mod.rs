@@ -159,9 +159,9 @@ pub struct RenderOptions {
     pub tracing: Tracing,
     /// A volume around a moving point; `None`: fitted to the scene.
     pub follow: Option<Follow>,
-    /// Warp the grid by the thesis' function (Freed 2018 §4.6.1), its finest texels at the
-    /// camera, with this slope at the grid's faces (`voxel::warp`); `None`: even texels.
-    pub warp: Option<f32>,
+    /// Warp the grid, its finest texels at the camera: by the thesis' function (Freed 2018
+    /// §4.6.1) or its perspective (§4.6.2; `voxel::warp`); `None`: even texels.
+    pub warp: Option<crate::voxel::warp::WarpChoice>,
     /// Clipmap cascades around the camera instead of one grid; `None`: one grid.
     pub clipmap: Option<ClipOptions>,
     /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
@@ -617,7 +617,7 @@ impl Renderer {
         if let Some(f) = self.options.follow {
             grid = VoxelGrid { warp: grid.warp, ..VoxelGrid::around(anchor, f.extent, grid.longest(), f.snap)? };
         }
-        grid = grid.refocused(anchor)?;
+        grid = grid.refocused(anchor, &self.scene.camera, &self.scene.mesh.bounds)?;
         if grid != self.voxels.grid {
             self.voxels.grid = grid;
             self.voxelizer.set_grid(&grid);

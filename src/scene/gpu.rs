@@ -57,6 +57,9 @@ pub struct FrameUniforms {
     pub gi_jitter: Vec4,
     /// The grid's warp (`voxel::warp::Warp::gpu`; w = 1: none).
     pub voxel_warp: Vec4,
+    /// A perspective warp's grid fraction to texture fraction and back (`voxel::warp::Warp::proj`).
+    pub voxel_warp_proj: Mat4,
+    pub voxel_warp_unproj: Mat4,
     /// A clipmap's levels (`voxel::clipmap::Clipmap::gpu`; x = 0: none).
     pub clip: Vec4,
     pub clip_levels: [Vec4; config::MAX_CLIP_LEVELS as usize],

@@ -32,7 +32,7 @@ vct viewer keys:
   arrow keys     swing the light's direction (the GI follows)
   V              switch voxelizer (rasterized / tessellation / points)
   X              voxel layout: fitted / warped, finest at the camera (Freed 2018 §4.6.1) /
-                 clipmap, levels around the camera
+                 warped by perspective, the camera's frustum (§4.6.2) / clipmap, levels around the camera
   C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, texels, radiance:0..3
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
@@ -160,7 +160,7 @@ fn overlay_lines(r: &Running) -> Vec<String> {
             grid.dims.y,
             grid.dims.z,
             match (o.warp, grid.clip) {
-                (Some(s), _) => format!(" warped ({s})"),
+                (Some(w), _) => format!(" {}", w.label()),
                 (_, Some(c)) => format!(" clipmap ({} levels of {}³)", c.levels, c.res),
                 _ => String::new(),
             },
@@ -338,8 +338,12 @@ impl App {
                     crate::render::ClipOptions { levels: crate::voxel::clipmap::DEFAULT_LEVELS, extent: None };
                 let clip = self.options.render.clipmap.unwrap_or(default);
                 let cube = options.follow.is_none() && options.dims.is_none();
+                use crate::voxel::warp::{WarpChoice, THESIS_END_SLOPE};
                 (options.warp, options.clipmap) = match (options.warp, options.clipmap) {
-                    (None, None) => (Some(crate::voxel::warp::THESIS_END_SLOPE), None),
+                    (None, None) => (Some(WarpChoice::Function(THESIS_END_SLOPE)), None),
+                    (Some(WarpChoice::Function(_)), _) if options.follow.is_none() => {
+                        (Some(WarpChoice::Perspective(crate::voxel::perspective::DEFAULT_RATIO)), None)
+                    }
                     (Some(_), _) if cube => (None, Some(clip)),
                     _ => (None, None),
                 };
@@ -349,7 +353,8 @@ impl App {
                     return Ok(());
                 }
                 let layout = match (options.warp, options.clipmap) {
-                    (Some(_), _) => "warped (finest at the camera)".to_string(),
+                    (Some(WarpChoice::Function(_)), _) => "warped by the thesis' function (finest at the camera)".to_string(),
+                    (Some(WarpChoice::Perspective(_)), _) => "warped by perspective (the camera's frustum)".to_string(),
                     (_, Some(c)) => format!("clipmap ({} levels around the camera)", c.levels),
                     _ => "fitted".to_string(),
                 };

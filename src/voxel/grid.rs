@@ -130,30 +130,34 @@ impl VoxelGrid {
         crate::gpu::GridSpec { warped: self.is_warped(), clipped: self.clip.is_some() }
     }
 
-    /// The same warp with its finest texels moved to `focus` (world).
-    pub fn refocused(self, focus: Vec3) -> Result<Self> {
-        if self.warp.is_none() {
-            return Ok(self);
+    /// The same warp following the view: a function warp's finest texels moved to `focus`, a
+    /// perspective warp's frustum rebuilt around `camera`'s view of `bounds`.
+    pub fn refocused(self, focus: Vec3, camera: &crate::scene::Camera, bounds: &Aabb) -> Result<Self> {
+        match self.warp {
+            Warp::None => Ok(self),
+            Warp::Function(f) if f.is_none() => Ok(self),
+            Warp::Function(f) => self.warped(focus, f.end_slope),
+            Warp::Perspective(p) => VoxelGrid::perspective(camera, bounds, self.dims, p.ratio),
         }
-        self.warped(focus, self.warp.end_slope)
     }
 
     /// Texel coordinates of world point `p` (texel v spans [v, v + 1)).
     pub fn texel_of(&self, p: Vec3) -> glam::DVec3 {
         let x = ((p - self.origin) / (self.dims.as_vec3() * self.voxel)).as_dvec3();
-        let n = self.dims.as_dvec3();
-        glam::DVec3::new(self.warp.forward(x.x, 0), self.warp.forward(x.y, 1), self.warp.forward(x.z, 2)) * n
+        self.warp.forward3(x) * self.dims.as_dvec3()
     }
 
-    /// The world box of texel `v`.
+    /// The world box of texel `v` (a perspective texel, a frustum's cell: the box around it).
     pub fn texel_bounds(&self, v: UVec3) -> Aabb {
         let n = self.dims.as_dvec3();
         let size = (self.dims.as_vec3() * self.voxel).as_dvec3();
-        let at = |t: glam::DVec3| {
-            let x = glam::DVec3::new(self.warp.inverse(t.x, 0), self.warp.inverse(t.y, 1), self.warp.inverse(t.z, 2));
-            (self.origin.as_dvec3() + x * size).as_vec3()
-        };
-        Aabb { min: at(v.as_dvec3() / n), max: at((v + 1).as_dvec3() / n) }
+        let mut b = Aabb::EMPTY;
+        for i in 0..8u32 {
+            let corner = v + UVec3::new(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+            let x = self.warp.inverse3(corner.as_dvec3() / n);
+            b.grow((self.origin.as_dvec3() + x * size).as_vec3());
+        }
+        b
     }
 
     /// Voxels along the longest axis (the `--res` the grid answers to).

@@ -9,6 +9,7 @@ pub mod clipmap;
 pub mod grid;
 pub mod headless;
 pub mod occupied;
+pub mod perspective;
 pub mod points;
 pub mod raster;
 pub mod subdivide;
@@ -195,6 +196,8 @@ pub struct VoxelParams {
     pub camera: [[f32; 4]; 4],
     /// The grid's warp (`warp::Warp::gpu`).
     pub warp: [f32; 4],
+    /// A perspective warp's grid fraction to texture fraction (`warp::Warp::proj`).
+    pub warp_proj: [[f32; 4]; 4],
 }
 
 /// A voxelizer's parameters and the uniform buffer that holds them.
@@ -208,8 +211,10 @@ impl ParamsUbo {
     pub fn set_origin(&mut self, grid: &VoxelGrid) {
         self.params.origin_size = grid.origin.extend(grid.voxel).into();
         self.params.warp = grid.warp.gpu().into();
+        self.params.warp_proj = grid.warp.proj().to_cols_array_2d();
         self.buffer.set(std::mem::offset_of!(VoxelParams, origin_size), bytemuck::bytes_of(&self.params.origin_size));
         self.buffer.set(std::mem::offset_of!(VoxelParams, warp), bytemuck::bytes_of(&self.params.warp));
+        self.buffer.set(std::mem::offset_of!(VoxelParams, warp_proj), bytemuck::bytes_of(&self.params.warp_proj));
     }
 
     /// Points the next draws at level `k` of `clip` (its box, in slab `k` of the stack), as one
@@ -297,6 +302,7 @@ pub(crate) fn params_for(
         tess: [level_scale, max_level, viewport_scale, 0.0],
         camera: glam::Mat4::IDENTITY.to_cols_array_2d(),
         warp: grid.warp.gpu().into(),
+        warp_proj: grid.warp.proj().to_cols_array_2d(),
     }
 }
 

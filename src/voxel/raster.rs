@@ -54,7 +54,8 @@ impl RasterVoxelizer {
             "raster voxelizer",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
-                Stage::new(vk::ShaderStageFlags::GEOMETRY, shaders::VOXELIZE_RASTER_GEOM),
+                // A perspective warp's triangles are mapped among the texels here.
+                Stage::new(vk::ShaderStageFlags::GEOMETRY, shaders::VOXELIZE_RASTER_GEOM).grid(volume.grid.spec()),
                 Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::VOXELIZE_RASTER_FRAG)
                     .spec(&spec)
                     .grid(volume.grid.spec()),

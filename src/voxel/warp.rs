@@ -13,17 +13,138 @@
 //!
 //! The shaders' copy is `shaders-glsl/common/warp.glsl`; the exact coverage reference
 //! (`reference::coverage`) inverts the map on its own, by bisection.
+//!
+//! [`Warp`] is the layout's choice: even texels, this function, or the perspective warp of §4.6.2
+//! (`voxel::perspective`).
 
-use glam::Vec3;
+use glam::{Mat4, Vec3, Vec4};
 
+use super::perspective::Perspective;
 use crate::error::{Error, Result};
 
 /// The thesis' end slope (§4.6.1: "for our implementation, α = 0.25").
 pub const THESIS_END_SLOPE: f32 = 0.25;
 
+/// A warp as a renderer's options ask for it: which, and how strong.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WarpChoice {
+    /// The thesis' function, with this slope at the grid's faces (§4.6.1).
+    Function(f32),
+    /// The camera's frustum, near texels this share of the far ones' width (§4.6.2).
+    Perspective(f32),
+}
+
+impl WarpChoice {
+    /// `warp function 0.25`, `warp perspective 0.25`: for tables and the overlay.
+    pub fn label(&self) -> String {
+        match self {
+            WarpChoice::Function(s) => format!("warp function {s}"),
+            WarpChoice::Perspective(r) => format!("warp perspective {r}"),
+        }
+    }
+
+    /// `grid` (fitted to `bounds`) warped as chosen, its finest texels at `camera`: the
+    /// perspective warp holds as many texels as the grid (`VoxelGrid::perspective_dims`).
+    pub fn apply(&self, grid: super::VoxelGrid, camera: &crate::scene::Camera, bounds: &crate::scene::Aabb) -> Result<super::VoxelGrid> {
+        match *self {
+            WarpChoice::Function(s) => grid.warped(camera.eye, s),
+            WarpChoice::Perspective(r) => {
+                super::VoxelGrid::perspective(camera, bounds, super::VoxelGrid::perspective_dims(&grid, camera), r)
+            }
+        }
+    }
+}
+
+/// How a grid's texels spread over its box.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Warp {
+    /// Evenly: texel v is the box's voxel v.
+    #[default]
+    None,
+    /// The thesis' function (§4.6.1), each axis on its own.
+    Function(Function),
+    /// The camera's frustum, projectively (§4.6.2).
+    Perspective(Perspective),
+}
+
+impl Warp {
+    /// No warp: texels evenly spread.
+    pub const NONE: Warp = Warp::None;
+
+    /// The thesis' warp function with its peak at grid fraction `centre` (clamped into the
+    /// grid) and slope `end_slope` at the faces.
+    pub fn function(centre: Vec3, end_slope: f32) -> Result<Self> {
+        Function::new(centre, end_slope).map(Warp::Function)
+    }
+
+    pub fn is_none(&self) -> bool {
+        match self {
+            Warp::None => true,
+            Warp::Function(f) => f.is_none(),
+            Warp::Perspective(_) => false,
+        }
+    }
+
+    /// The largest number of texels to a grid voxel, anywhere in the grid (1: no warp).
+    pub fn peak_slope(&self) -> f32 {
+        match self {
+            Warp::None => 1.0,
+            Warp::Function(f) => f.peak_slope(),
+            Warp::Perspective(p) => p.peak_slope() as f32,
+        }
+    }
+
+    /// `vec4 warp` of the shaders (common/warp.glsl): the function's centre and end slope, or
+    /// for the perspective warp its peak slope, the cube root of its matrix's determinant and
+    /// the w it clips triangles at, with w = 0.
+    pub fn gpu(&self) -> Vec4 {
+        match self {
+            Warp::None => Function::NONE.gpu(),
+            Warp::Function(f) => f.gpu(),
+            Warp::Perspective(p) => p.gpu(),
+        }
+    }
+
+    /// `mat4 warp_proj` of the shaders: grid fraction to texture fraction, homogeneous (the
+    /// identity but for the perspective warp).
+    pub fn proj(&self) -> Mat4 {
+        match self {
+            Warp::Perspective(p) => p.to_texel.as_mat4(),
+            _ => Mat4::IDENTITY,
+        }
+    }
+
+    /// The inverse of [`Self::proj`].
+    pub fn unproj(&self) -> Mat4 {
+        match self {
+            Warp::Perspective(p) => p.from_texel.as_mat4(),
+            _ => Mat4::IDENTITY,
+        }
+    }
+
+    /// The texture fraction of grid fraction `x` (outside the grid's texels where the
+    /// perspective warp has none: behind its apex).
+    pub fn forward3(&self, x: glam::DVec3) -> glam::DVec3 {
+        match self {
+            Warp::None => x,
+            Warp::Function(f) => glam::DVec3::new(f.forward(x.x, 0), f.forward(x.y, 1), f.forward(x.z, 2)),
+            Warp::Perspective(p) => p.forward(x).unwrap_or(glam::DVec3::splat(-4.0)),
+        }
+    }
+
+    /// The grid fraction of texture fraction `t` (the inverse of [`Self::forward3`]).
+    pub fn inverse3(&self, t: glam::DVec3) -> glam::DVec3 {
+        match self {
+            Warp::None => t,
+            Warp::Function(f) => glam::DVec3::new(f.inverse(t.x, 0), f.inverse(t.y, 1), f.inverse(t.z, 2)),
+            Warp::Perspective(p) => p.inverse(t),
+        }
+    }
+}
+
 /// A per-axis warp of the grid's box onto its texels.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Warp {
+pub struct Function {
     /// Where the texels are smallest, as a fraction of each axis (the camera's place).
     pub centre: Vec3,
     /// The slope at the grid's faces (texels over grid fraction): 1 is no warp, below 1 the
@@ -31,11 +152,6 @@ pub struct Warp {
     pub end_slope: f32,
 }
 
-impl Default for Warp {
-    fn default() -> Self {
-        Warp::NONE
-    }
-}
 
 /// The half-cubic of one side: h(0) = 0, h(1) = 1, h'(0) = α, h'(1) = 1.5 − α/2, convex and
 /// increasing on [0, 1] (h'' = 3(1 − α)(1 − u) ≥ 0).
@@ -70,13 +186,13 @@ fn h_inverse(t: f64, a: f64) -> f64 {
     u
 }
 
-impl Warp {
+impl Function {
     /// No warp: texels evenly spread.
-    pub const NONE: Warp = Warp { centre: Vec3::splat(0.5), end_slope: 1.0 };
+    pub const NONE: Function = Function { centre: Vec3::splat(0.5), end_slope: 1.0 };
 
     /// The thesis' warp function with its peak at grid fraction `centre` (clamped into the
     /// grid) and slope `end_slope` at the faces.
-    pub fn function(centre: Vec3, end_slope: f32) -> Result<Self> {
+    pub fn new(centre: Vec3, end_slope: f32) -> Result<Self> {
         if !(end_slope.is_finite() && (0.05..=1.0).contains(&end_slope)) {
             return Err(Error::param(
                 "warp-slope",
@@ -86,7 +202,7 @@ impl Warp {
         if !centre.is_finite() {
             return Err(Error::param("warp", format!("the warp's centre {centre} is not finite")));
         }
-        Ok(Warp { centre: centre.clamp(Vec3::ZERO, Vec3::ONE), end_slope })
+        Ok(Function { centre: centre.clamp(Vec3::ZERO, Vec3::ONE), end_slope })
     }
 
     pub fn is_none(&self) -> bool {
@@ -140,7 +256,7 @@ impl Warp {
     }
 
     /// `vec4 warp` of the shaders: xyz the centre, w the end slope.
-    pub fn gpu(&self) -> glam::Vec4 {
+    pub fn gpu(&self) -> Vec4 {
         self.centre.extend(self.end_slope)
     }
 }
@@ -156,7 +272,7 @@ mod tests {
 
     #[test]
     fn centred_warp_is_the_thesis_function() {
-        let w = Warp::function(Vec3::splat(0.5), 0.25).unwrap();
+        let w = Function::new(Vec3::splat(0.5), 0.25).unwrap();
         for i in 0..=100 {
             let x = i as f64 / 100.0;
             assert!((w.forward(x, 0) - thesis(x, 0.25)).abs() < 1e-12, "x {x}");
@@ -167,7 +283,7 @@ mod tests {
     #[test]
     fn round_trip_is_exact_and_monotone() {
         for (c, a) in [(0.5, 0.25), (0.1, 0.25), (0.93, 0.05), (0.0, 0.5), (1.0, 0.25), (0.3, 1.0)] {
-            let w = Warp::function(Vec3::splat(c), a).unwrap();
+            let w = Function::new(Vec3::splat(c), a).unwrap();
             let mut last = f64::NEG_INFINITY;
             for i in -20..=1020 {
                 let x = i as f64 / 1000.0;
@@ -184,8 +300,9 @@ mod tests {
     fn no_warp_is_the_identity() {
         for i in 0..=10 {
             let x = i as f64 / 10.0;
-            assert!((Warp::NONE.forward(x, 0) - x).abs() < 1e-15);
+            assert!((Function::NONE.forward(x, 0) - x).abs() < 1e-15);
         }
         assert!(Warp::function(Vec3::ZERO, 0.0).is_err() && Warp::function(Vec3::ZERO, 1.5).is_err());
+        assert!(Warp::NONE.is_none() && Warp::NONE.proj() == Mat4::IDENTITY);
     }
 }

@@ -105,14 +105,19 @@ pub struct BenchArgs {
     /// With --accuracy: every variant of the GI model study, not only the scene's own model.
     #[arg(long, requires = "accuracy")]
     pub study: bool,
-    /// With --accuracy: each scene also on a warped grid (Freed 2018 §4.6.1) of the same
-    /// voxels, beside its fitted grid (docs/benchmarks.md, "Warped voxels").
+    /// With --accuracy: each scene also on warped grids of the same voxels, by the thesis'
+    /// function (Freed 2018 §4.6.1) and by perspective (§4.6.2), beside its fitted grid
+    /// (docs/benchmarks.md, "Warped voxels").
     #[arg(long, requires = "accuracy", conflicts_with = "study")]
     pub layouts: bool,
     /// With --layouts: the warp's end slopes, e.g. 0.75,0.5,0.25 (each 0.05..=1; default: the
     /// thesis' 0.25).
     #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = warp_slope)]
     pub warp_slopes: Option<Vec<f32>>,
+    /// With --layouts: the perspective warp's near-over-far texel widths, e.g. 0.5,0.25 (each
+    /// 0.05..=0.95; default: 0.25).
+    #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = perspective_ratio)]
+    pub perspective_ratios: Option<Vec<f32>>,
     /// With --layouts: clipmaps to measure beside the fitted grid, each LEVELSxRES, e.g. 2x64,4x64
     /// (none by default).
     #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = clip_layout)]
@@ -232,29 +237,41 @@ pub fn warp_slope(text: &str) -> std::result::Result<f32, String> {
     float_in(text, 0.05, 1.0)
 }
 
+pub fn perspective_ratio(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, 0.05, 0.95)
+}
+
 /// How the grid's texels spread over its box.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum WarpArg {
     None,
     Function,
+    Perspective,
 }
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct WarpArgs {
     /// Spread the texels unevenly: `function` warps each axis by the thesis' cubic (Freed 2018
     /// §4.6.1), finest at the camera (1.5 - s/2 texels to an even grid's voxel) and coarsest at
-    /// the grid's faces (s, --warp-slope); `none`, even texels.
+    /// the grid's faces (s, --warp-slope); `perspective` divides the camera's frustum (§4.6.2,
+    /// made projective), near texels s times as wide as far ones; `none`, even texels.
     #[arg(long, value_enum, default_value = "none")]
     pub warp: WarpArg,
-    /// With --warp function: the slope at the grid's faces, 0.05..=1 (the thesis' 0.25).
+    /// With --warp function: the slope at the grid's faces, 0.05..=1 (the thesis' 0.25); with
+    /// --warp perspective, the near texels' width over the far ones', 0.05..=0.95.
     #[arg(long, value_name = "SLOPE", default_value_t = vct::voxel::warp::THESIS_END_SLOPE, value_parser = warp_slope)]
     pub warp_slope: f32,
 }
 
 impl WarpArgs {
-    /// The warp's end slope, if the grid is warped.
-    pub fn end_slope(&self) -> Option<f32> {
-        (self.warp == WarpArg::Function).then_some(self.warp_slope)
+    /// The warp, if the grid is warped.
+    pub fn choice(&self) -> Option<vct::voxel::warp::WarpChoice> {
+        use vct::voxel::warp::WarpChoice;
+        match self.warp {
+            WarpArg::None => None,
+            WarpArg::Function => Some(WarpChoice::Function(self.warp_slope)),
+            WarpArg::Perspective => Some(WarpChoice::Perspective(self.warp_slope)),
+        }
     }
 }
 
@@ -282,9 +299,9 @@ impl SceneArgs {
         self.follow.map(|extent| vct::render::Follow { extent, snap: !self.no_snap })
     }
 
-    /// The warp's end slope, if the grid is warped.
-    pub fn warp(&self) -> Option<f32> {
-        self.warp.end_slope()
+    /// The warp, if the grid is warped.
+    pub fn warp(&self) -> Option<vct::voxel::warp::WarpChoice> {
+        self.warp.choice()
     }
 
     pub fn clipmap(&self) -> Option<vct::render::ClipOptions> {

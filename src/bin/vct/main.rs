@@ -174,7 +174,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     let method = args.method.method()?;
     let res = args.method.res()?.unwrap_or(scene.settings.voxel_resolution);
     let mut grid = VoxelGrid::choose(&scene.mesh.bounds, res, args.method.dims)?;
-    if let Some(end_slope) = args.warp.end_slope() {
+    if let Some(warp) = args.warp.choice() {
         if args.view.is_some() {
             // The cube view draws unit cubes of the even grid (render::voxel_view).
             bail!("--view draws the voxels as cubes of an even grid: give it without --warp (or use `vct render --warp function --view voxels`)");
@@ -183,7 +183,7 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
             // .binvox holds cubes of one size.
             bail!("--export writes a .binvox of even cubes, which cannot hold warped texels: give it without --warp");
         }
-        grid = grid.warped(scene.camera.eye, end_slope).context("warping the grid")?;
+        grid = warp.apply(grid, &scene.camera, &scene.mesh.bounds).context("warping the grid")?;
     }
     let ctx = open_device(&args.gpu)?;
     let method = method.on(&ctx.info.features);
@@ -195,9 +195,15 @@ fn voxelize(args: VoxelizeArgs) -> Result<()> {
     }
     let g = run.grid;
     println!("method: {}   grid: {}, voxel {:.4} m", method.label(), g.dims_label(), g.voxel);
-    if g.is_warped() {
-        let (focus, s) = (g.warp.centre, g.warp.end_slope);
-        println!("warped (Freed 2018 §4.6.1): finest at grid fraction {focus:.3}, end slope {s}: texels {:.2}× to {s}× as fine as the voxel", g.warp.peak_slope());
+    match g.warp {
+        vct::voxel::warp::Warp::Function(w) if g.is_warped() => {
+            let (focus, s) = (w.centre, w.end_slope);
+            println!("warped (Freed 2018 §4.6.1): finest at grid fraction {focus:.3}, end slope {s}: texels {:.2}× to {s}× as fine as the voxel", w.peak_slope());
+        }
+        vct::voxel::warp::Warp::Perspective(p) => {
+            println!("warped by perspective (Freed 2018 §4.6.2): near texels {} of the far ones' width, {:.2}× as fine as the box's voxel", p.ratio, p.peak_slope());
+        }
+        _ => {}
     }
     let pool = run.bricks.map(|b| b.capacity + 1);
     println!("storage: {}", run.storage.label());
@@ -547,6 +553,10 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
             if args.layouts {
                 let slopes = args.warp_slopes.clone().unwrap_or(vec![vct::voxel::warp::THESIS_END_SLOPE]);
                 v.extend(slopes.into_iter().map(|s| accuracy::Variant::warped(&default, s)));
+                let ratios = args.perspective_ratios.clone().unwrap_or(vec![vct::voxel::perspective::DEFAULT_RATIO]);
+                v.extend(ratios.into_iter().map(|r| {
+                    accuracy::Variant::warped_by(&default, vct::voxel::warp::WarpChoice::Perspective(r))
+                }));
                 let clips = args.clipmaps.clone().unwrap_or_default();
                 v.extend(clips.into_iter().map(|(l, n)| accuracy::Variant::clipped(&default, l, n)));
             }
