@@ -424,6 +424,8 @@ pub fn flicker(
 pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
     let full = (1, false);
     let warp = Layout::Warped(crate::voxel::warp::WarpChoice::Function(crate::voxel::warp::THESIS_END_SLOPE));
+    let perspective =
+        Layout::Warped(crate::voxel::warp::WarpChoice::Perspective(crate::voxel::perspective::DEFAULT_RATIO));
     let even = Layout::Even;
     let configs = [
         ("sliding volume", Motion::Volume { snap: false }, 1.0, full, even),
@@ -438,6 +440,7 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
         ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true), even),
         ("orbiting camera", Motion::Camera, 1.0, full, even),
         ("orbiting camera, warped", Motion::Camera, 1.0, full, warp),
+        ("orbiting camera, perspective warp", Motion::Camera, 1.0, full, perspective),
         ("orbiting camera, clipmap, 4 levels", Motion::Camera, 1.0, full, Layout::Clipmap(4)),
         ("orbiting camera, GI scale 2", Motion::Camera, 1.0, (2, false), even),
         ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true), even),
