@@ -75,6 +75,13 @@ fn a_warped_grid_in_the_viewer_matches_the_headless_render() {
     viewer_matches_headless("warped", &[], &["--warp", "function"]);
 }
 
+/// The perspective warp is rebuilt around the camera every frame: a still camera's frame is the
+/// headless render's.
+#[test]
+fn a_perspective_warp_in_the_viewer_matches_the_headless_render() {
+    viewer_matches_headless("perspective", &[], &["--warp", "perspective"]);
+}
+
 /// Issue "detail where the camera is": the viewer recentres clipmap levels on the camera every
 /// frame; a still camera's frame is the headless render's.
 #[test]
