@@ -49,7 +49,7 @@ TAIL=3 step vox-persp 60 $V voxelize $SP --res 128 --warp perspective
 # Frames in flight: the wall clock a frame, each waited for, and with one or two in flight.
 for k in 0 1 2; do a=""; [ $k -gt 0 ] && a="--in-flight $k"
   step s360-still-k$k 20 $V render $S --gi-scale 4 --gi-accumulate on --reuse-volume on --frames 300 $a --timings $W/r/s360-still-k$k.json --out $W/r/x.png
-  grep '^wall' $W/r/s360-still-k$k.log
+  [ -e $W/r/s360-still-k$k.log ] && grep "^wall" $W/r/s360-still-k$k.log
 done
 # Accuracy against the path tracer (references from .gpu/cache where their keys match).
 TAIL=16 step acc-layouts 90 $V bench --accuracy --given-only --layouts --clipmaps 2x64,4x64 --perspective-ratios 0.25 --spp 512 --res 128 --out $W/acc/lay $SP assets/scenes/sponza-arcade.toml assets/scenes/sponza-end.toml
