@@ -152,7 +152,7 @@ fn cli_reports_bad_input_without_panicking() {
         ("--warp-slope", "0"),
         ("--warp-slope", "1.5"),
         ("--warp-slope", "inf"),
-        ("--warp", "perspective"),
+        ("--warp", "sideways"),
         ("--in-flight", "0"),
         ("--in-flight", "3"),
         ("--coverage", "exact"),

@@ -163,11 +163,12 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
     let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
-    // Per embedded scene: its fitted grid, then the two warps.
+    // Per embedded scene: its fitted grid, then the two function warps and the perspective warp.
     let variants: Vec<&str> = rows.iter().map(|r| r[col("variant")]).collect();
-    assert!(!variants.is_empty() && variants.len().is_multiple_of(3), "{csv}");
-    for v in variants.chunks(3) {
-        assert_eq!(v, ["\"default\"", "\"warp function 0.5\"", "\"warp function 0.25\""], "{csv}");
+    assert!(!variants.is_empty() && variants.len().is_multiple_of(4), "{csv}");
+    for v in variants.chunks(4) {
+        let want = ["\"default\"", "\"warp function 0.5\"", "\"warp function 0.25\"", "\"warp perspective 0.25\""];
+        assert_eq!(v, want, "{csv}");
     }
     for r in &rows {
         let num = |name: &str| -> f64 { r[col(name)].parse().unwrap() };
@@ -175,8 +176,9 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
         assert!((0.0..1.0).contains(&num("flip")) && num("flip") > 0.0, "{r:?}");
     }
     // The warp changes the image: its FLIP is not the fitted grid's.
-    for r in rows.chunks(3) {
+    for r in rows.chunks(4) {
         assert_ne!(r[0][col("flip")], r[2][col("flip")], "{csv}");
+        assert_ne!(r[0][col("flip")], r[3][col("flip")], "{csv}");
     }
     assert!(out.join("accuracy/accuracy-memory.png").exists() && out.join("accuracy/accuracy.png").exists());
     let _ = std::fs::remove_dir_all(out.parent().unwrap());

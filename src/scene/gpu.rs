@@ -109,6 +109,44 @@ pub struct MeshBuffers {
     pub vertices: Buffer,
     pub indices: Buffer,
     pub draws: Vec<Draw>,
+    /// Each draw cut into runs of CLUSTER_TRIANGLES consecutive triangles with their bounds,
+    /// for draws that need only what meets a box ([`MeshBuffers::draw_within`]).
+    pub clusters: Vec<Cluster>,
+}
+
+/// Triangles in a cluster: the clipmap's levels draw, per level, the clusters that meet its box.
+/// Measured on Sponza (66445 triangles, the atrium camera, four levels of 64³): runs of 64, 128
+/// and 256 triangles in the file's order draw 2.24, 2.4 and 2.67 times the mesh over the four
+/// levels, against 4 undivided and 1.94 triangle by triangle (2.14 for 64 in Morton order, which
+/// would reorder every pass's triangles); 128 keeps about 520 draws a level.
+pub const CLUSTER_TRIANGLES: u32 = 128;
+
+/// A run of one draw's consecutive triangles and the box that holds them.
+#[derive(Clone, Copy, Debug)]
+pub struct Cluster {
+    pub first_index: u32,
+    pub index_count: u32,
+    pub material: u32,
+    pub bounds: crate::scene::Aabb,
+}
+
+/// Cuts each of `mesh`'s draws into clusters of at most `size` consecutive triangles.
+pub fn clusters(mesh: &Mesh, size: u32) -> Vec<Cluster> {
+    let mut out = Vec::new();
+    for draw in &mesh.draws {
+        let end = draw.first_index + draw.index_count;
+        let mut first = draw.first_index;
+        while first < end {
+            let count = (end - first).min(3 * size.max(1));
+            let mut bounds = crate::scene::Aabb::EMPTY;
+            for &i in &mesh.indices[first as usize..(first + count) as usize] {
+                bounds.grow(glam::Vec3::from(mesh.vertices[i as usize].pos));
+            }
+            out.push(Cluster { first_index: first, index_count: count, material: draw.material, bounds });
+            first += count;
+        }
+    }
+    out
 }
 
 impl MeshBuffers {
@@ -126,24 +164,57 @@ impl MeshBuffers {
             vk::BufferUsageFlags::INDEX_BUFFER | storage,
             &mesh.indices,
         )?;
-        Ok(MeshBuffers { ctx: ctx.clone(), vertices, indices, draws: mesh.draws.clone() })
+        let clusters = clusters(mesh, CLUSTER_TRIANGLES);
+        Ok(MeshBuffers { ctx: ctx.clone(), vertices, indices, draws: mesh.draws.clone(), clusters })
     }
 
     /// Binds the buffers and issues one draw per material, pushing its index and, when given,
     /// binding its textures (one set per material) as set 1.
     pub fn draw(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, material_sets: Option<&DescriptorSet>) {
+        self.draw_within(cmd, layout, material_sets, None);
+    }
+
+    /// [`Self::draw`], only the clusters that meet `within` when given (a voxelization into a
+    /// box: a triangle outside it writes no voxel of it). Consecutive clusters drawn are one draw.
+    pub fn draw_within(
+        &self,
+        cmd: vk::CommandBuffer,
+        layout: vk::PipelineLayout,
+        material_sets: Option<&DescriptorSet>,
+        within: Option<&crate::scene::Aabb>,
+    ) {
         let d = &self.ctx.device;
+        let meets = |c: &Cluster| within.is_none_or(|b| c.bounds.min.cmple(b.max).all() && c.bounds.max.cmpge(b.min).all());
+        let mut material = None;
+        let mut issue = |first: u32, count: u32, m: u32| unsafe {
+            if material != Some(m) {
+                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(&m));
+                if let Some(sets) = material_sets {
+                    let set = [sets.sets[m as usize]];
+                    d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, layout, 1, &set, &[]);
+                }
+                material = Some(m);
+            }
+            d.cmd_draw_indexed(cmd, count, 1, first, 0, 0);
+        };
         unsafe {
             d.cmd_bind_vertex_buffers(cmd, 0, &[self.vertices.raw], &[0]);
             d.cmd_bind_index_buffer(cmd, self.indices.raw, 0, vk::IndexType::UINT32);
-            for draw in &self.draws {
-                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::ALL, 0, bytemuck::bytes_of(&draw.material));
-                if let Some(sets) = material_sets {
-                    let set = [sets.sets[draw.material as usize]];
-                    d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, layout, 1, &set, &[]);
+        }
+        // Runs of consecutive clusters of one material that meet the box: one draw each.
+        let mut run: Option<(u32, u32, u32)> = None;
+        for c in self.clusters.iter().filter(|c| meets(c)) {
+            run = match run {
+                Some((first, count, m)) if m == c.material && first + count == c.first_index => Some((first, count + c.index_count, m)),
+                Some((first, count, m)) => {
+                    issue(first, count, m);
+                    Some((c.first_index, c.index_count, c.material))
                 }
-                d.cmd_draw_indexed(cmd, draw.index_count, 1, draw.first_index, 0, 0);
-            }
+                None => Some((c.first_index, c.index_count, c.material)),
+            };
+        }
+        if let Some((first, count, m)) = run {
+            issue(first, count, m);
         }
     }
 
@@ -301,5 +372,44 @@ impl SceneGpu {
     /// Draws the scene's mesh; `textured` binds each material's textures as set 1.
     pub fn draw(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, textured: bool) {
         self.mesh.draw(cmd, layout, textured.then_some(&self.material_sets));
+    }
+
+    /// [`Self::draw`], only the triangles near `within` when given (`MeshBuffers::draw_within`).
+    pub fn draw_within(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, textured: bool, within: Option<&crate::scene::Aabb>) {
+        self.mesh.draw_within(cmd, layout, textured.then_some(&self.material_sets), within);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clusters_cut_each_draw_into_bounded_runs() {
+        let mut mesh = Mesh::default();
+        for i in 0..1000u32 {
+            let x = i as f32;
+            for p in [[x, 0.0, 0.0], [x + 0.5, 1.0, 0.0], [x, 0.0, 1.0]] {
+                mesh.vertices.push(Vertex { pos: p, ..Default::default() });
+            }
+            mesh.indices.extend([3 * i, 3 * i + 1, 3 * i + 2]);
+        }
+        mesh.draws = vec![Draw { first_index: 0, index_count: 3 * 300, material: 0 }, Draw { first_index: 900, index_count: 2100, material: 1 }];
+        let c = clusters(&mesh, 128);
+        // 300 = 128 + 128 + 44, 700 = 5 × 128 + 60: runs of one draw each, in order, covering all.
+        assert_eq!(c.len(), 3 + 6);
+        let mut next = 0;
+        for k in &c {
+            assert_eq!(k.first_index, next);
+            assert!(k.index_count <= 3 * 128 && k.index_count.is_multiple_of(3));
+            let draw = mesh.draws.iter().find(|d| (d.first_index..d.first_index + d.index_count).contains(&k.first_index)).unwrap();
+            assert_eq!(k.material, draw.material);
+            assert!(k.first_index + k.index_count <= draw.first_index + draw.index_count);
+            // Its box holds its triangles: triangle t spans x in [t, t + 0.5].
+            let (t0, t1) = (k.first_index / 3, (k.first_index + k.index_count) / 3 - 1);
+            assert_eq!((k.bounds.min.x, k.bounds.max.x), (t0 as f32, t1 as f32 + 0.5));
+            next += k.index_count;
+        }
+        assert_eq!(next, 3000);
     }
 }

@@ -345,20 +345,25 @@ impl Voxelizer {
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, volume: &VoxelVolume) {
         volume.record_clear(cmd);
         let params = self.params();
-        let draw = || {
+        // `within`: a clipmap level's box, whose draw needs only the triangles that meet it.
+        let draw = |within: Option<&crate::scene::Aabb>| {
             params.record_upload(cmd);
             match self {
-                Voxelizer::Tess(t) => t.record(cmd, scene_gpu),
-                Voxelizer::Raster(r) => r.record(cmd, scene_gpu, volume),
+                Voxelizer::Tess(t) => t.record(cmd, scene_gpu, within),
+                Voxelizer::Raster(r) => r.record(cmd, scene_gpu, within),
                 Voxelizer::Points(p) => p.record(cmd, scene_gpu),
             }
         };
         match &volume.grid.clip {
-            None => draw(),
+            None => draw(None),
             Some(clip) => {
                 for k in 0..clip.levels {
                     params.set_level(clip, k);
-                    draw();
+                    // Padded by a voxel of the level: a triangle on the box's face still writes.
+                    let level = clip.level_grid(k);
+                    let b = level.bounds();
+                    let pad = glam::Vec3::splat(level.voxel);
+                    draw(Some(&crate::scene::Aabb { min: b.min - pad, max: b.max + pad }));
                     // Earlier levels' writes before the next level's (the same textures, list
                     // and page table; a voxel of two levels is two texels, but the list's count
                     // and the pool's slots are shared).

@@ -71,12 +71,13 @@ impl RasterVoxelizer {
         Ok(RasterVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, size })
     }
 
-    pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, _volume: &VoxelVolume) {
+    /// Voxelizes the scene, or only its triangles near `within` (a clipmap level's box).
+    pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, within: Option<&crate::scene::Aabb>) {
         let att = Attachments { color: None, depth: None, width: self.size, height: self.size };
         gpu::render(&self.ctx, cmd, att, || {
             self.pipeline.bind(cmd, &[scene_gpu.set.raw]);
             self.pipeline.bind_set(cmd, 2, self.set.raw);
-            scene_gpu.draw(cmd, self.pipeline.layout, true);
+            scene_gpu.draw_within(cmd, self.pipeline.layout, true, within);
         });
     }
 }

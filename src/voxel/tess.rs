@@ -80,12 +80,13 @@ impl TessVoxelizer {
         Ok(TessVoxelizer { ctx: ctx.clone(), pipeline, set, params: params_buffer, mesh, split, subdivide, max_level })
     }
 
-    pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu) {
+    /// Voxelizes the scene, or only its triangles near `within` (a clipmap level's box).
+    pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, within: Option<&crate::scene::Aabb>) {
         let att = Attachments { color: None, depth: None, width: 1, height: 1 };
         gpu::render(&self.ctx, cmd, att, || {
             self.pipeline.bind(cmd, &[scene_gpu.set.raw]);
             self.pipeline.bind_set(cmd, 2, self.set.raw);
-            self.mesh.draw(cmd, self.pipeline.layout, Some(&scene_gpu.material_sets));
+            self.mesh.draw_within(cmd, self.pipeline.layout, Some(&scene_gpu.material_sets), within);
         });
     }
 
