@@ -10,13 +10,13 @@
 
 mod common;
 
-use vct::voxel::warp::WarpChoice;
 use glam::Vec3;
 use vct::bench::accuracy::{region_means, regions};
 use vct::reference::pathtrace::{PathTracer, RefOptions};
 use vct::render::{FrameImages, RenderOptions, Renderer, View};
 use vct::scene::file::GiFile;
 use vct::scene::Scene;
+use vct::voxel::warp::WarpChoice;
 use vct::voxel::{Coverage, VoxelizeMethod};
 
 fn render(scene: &Scene, view: View, res: u32) -> FrameImages {

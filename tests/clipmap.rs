@@ -159,7 +159,8 @@ fn clipmaps_refuse_what_does_not_apply() {
     let with = |o: RenderOptions| RenderOptions { clipmap: Some(ClipOptions { levels: 3, extent: None }), ..o };
     let follow = with(RenderOptions { follow: Some(Follow { extent: 4.0, snap: true }), ..options(32, View::Full) });
     assert!(refused(follow, &scene).contains("--follow"));
-    let warp = with(RenderOptions { warp: Some(vct::voxel::warp::WarpChoice::Function(0.25)), ..options(32, View::Full) });
+    let warp =
+        with(RenderOptions { warp: Some(vct::voxel::warp::WarpChoice::Function(0.25)), ..options(32, View::Full) });
     assert!(refused(warp, &scene).contains("--warp"));
     let mut temporal = scene.clone();
     temporal.settings.gi.temporal = 0.5;

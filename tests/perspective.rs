@@ -21,7 +21,14 @@ fn v(x: f32, y: f32, z: f32) -> Vec3 {
 
 #[test]
 fn perspective_voxelization_is_exact_among_the_texels() {
-    let camera = Camera { eye: v(0.0, 1.0, 6.0), target: v(0.5, 0.8, 0.0), up: Vec3::Y, fov_y_deg: 60.0, width: 160, height: 90 };
+    let camera = Camera {
+        eye: v(0.0, 1.0, 6.0),
+        target: v(0.5, 0.8, 0.0),
+        up: Vec3::Y,
+        fov_y_deg: 60.0,
+        width: 160,
+        height: 90,
+    };
     let probes: [(&str, Vec<[Vec3; 3]>); 3] = [
         ("in view", vec![[v(-2.3, 0.1, -1.7), v(2.2, 0.6, -3.9), v(0.4, 2.9, 0.3)]]),
         // A floor from behind the camera to far ahead: clipped where it passes the apex.

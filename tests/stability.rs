@@ -3,11 +3,11 @@
 
 mod common;
 
-use vct::voxel::warp::WarpChoice;
 use vct::bench::stability::{
     flicker, leak, raster_cracks, self_illumination_ratio, subvoxel_triangles, Layout, Motion,
 };
 use vct::scene::file::GiFile;
+use vct::voxel::warp::WarpChoice;
 
 #[test]
 fn raster_cracks_appear_below_one_pixel_per_voxel() {

@@ -184,7 +184,8 @@ impl RefGrid {
             Warp::Perspective(p) => {
                 // World to grid fraction, the grid's map to texture fractions, then to texels.
                 let size = grid.dims.as_dvec3() * grid.voxel as f64;
-                let to_fraction = glam::DMat4::from_scale(1.0 / size) * glam::DMat4::from_translation(-grid.origin.as_dvec3());
+                let to_fraction =
+                    glam::DMat4::from_scale(1.0 / size) * glam::DMat4::from_translation(-grid.origin.as_dvec3());
                 let world_to_texel = glam::DMat4::from_scale(grid.dims.as_dvec3()) * p.to_texel * to_fraction;
                 perspective = Some(RefPerspective { world_to_texel, clip: 0.5 * p.near });
             }

@@ -38,7 +38,10 @@ pub fn grid_for(ctx: &Context, scene: &Scene, options: &RenderOptions, resolutio
         (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
     };
     if let (Some(crate::voxel::warp::WarpChoice::Perspective(_)), Some(_)) = (options.warp, options.follow) {
-        return Err(crate::Error::param("warp", "a perspective warp spans the camera's frustum: --follow does not apply"));
+        return Err(crate::Error::param(
+            "warp",
+            "a perspective warp spans the camera's frustum: --follow does not apply",
+        ));
     }
     let grid = match options.warp {
         Some(w) => w.apply(grid, &scene.camera, &scene.mesh.bounds)?,

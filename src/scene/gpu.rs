@@ -184,7 +184,8 @@ impl MeshBuffers {
         within: Option<&crate::scene::Aabb>,
     ) {
         let d = &self.ctx.device;
-        let meets = |c: &Cluster| within.is_none_or(|b| c.bounds.min.cmple(b.max).all() && c.bounds.max.cmpge(b.min).all());
+        let meets =
+            |c: &Cluster| within.is_none_or(|b| c.bounds.min.cmple(b.max).all() && c.bounds.max.cmpge(b.min).all());
         let mut material = None;
         let mut issue = |first: u32, count: u32, m: u32| unsafe {
             if material != Some(m) {
@@ -205,7 +206,9 @@ impl MeshBuffers {
         let mut run: Option<(u32, u32, u32)> = None;
         for c in self.clusters.iter().filter(|c| meets(c)) {
             run = match run {
-                Some((first, count, m)) if m == c.material && first + count == c.first_index => Some((first, count + c.index_count, m)),
+                Some((first, count, m)) if m == c.material && first + count == c.first_index => {
+                    Some((first, count + c.index_count, m))
+                }
                 Some((first, count, m)) => {
                     issue(first, count, m);
                     Some((c.first_index, c.index_count, c.material))
@@ -375,7 +378,13 @@ impl SceneGpu {
     }
 
     /// [`Self::draw`], only the triangles near `within` when given (`MeshBuffers::draw_within`).
-    pub fn draw_within(&self, cmd: vk::CommandBuffer, layout: vk::PipelineLayout, textured: bool, within: Option<&crate::scene::Aabb>) {
+    pub fn draw_within(
+        &self,
+        cmd: vk::CommandBuffer,
+        layout: vk::PipelineLayout,
+        textured: bool,
+        within: Option<&crate::scene::Aabb>,
+    ) {
         self.mesh.draw_within(cmd, layout, textured.then_some(&self.material_sets), within);
     }
 }
@@ -394,7 +403,10 @@ mod tests {
             }
             mesh.indices.extend([3 * i, 3 * i + 1, 3 * i + 2]);
         }
-        mesh.draws = vec![Draw { first_index: 0, index_count: 3 * 300, material: 0 }, Draw { first_index: 900, index_count: 2100, material: 1 }];
+        mesh.draws = vec![
+            Draw { first_index: 0, index_count: 3 * 300, material: 0 },
+            Draw { first_index: 900, index_count: 2100, material: 1 },
+        ];
         let c = clusters(&mesh, 128);
         // 300 = 128 + 128 + 44, 700 = 5 × 128 + 60: runs of one draw each, in order, covering all.
         assert_eq!(c.len(), 3 + 6);
@@ -402,7 +414,11 @@ mod tests {
         for k in &c {
             assert_eq!(k.first_index, next);
             assert!(k.index_count <= 3 * 128 && k.index_count.is_multiple_of(3));
-            let draw = mesh.draws.iter().find(|d| (d.first_index..d.first_index + d.index_count).contains(&k.first_index)).unwrap();
+            let draw = mesh
+                .draws
+                .iter()
+                .find(|d| (d.first_index..d.first_index + d.index_count).contains(&k.first_index))
+                .unwrap();
             assert_eq!(k.material, draw.material);
             assert!(k.first_index + k.index_count <= draw.first_index + draw.index_count);
             // Its box holds its triangles: triangle t spans x in [t, t + 0.5].

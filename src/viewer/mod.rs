@@ -353,7 +353,9 @@ impl App {
                     return Ok(());
                 }
                 let layout = match (options.warp, options.clipmap) {
-                    (Some(WarpChoice::Function(_)), _) => "warped by the thesis' function (finest at the camera)".to_string(),
+                    (Some(WarpChoice::Function(_)), _) => {
+                        "warped by the thesis' function (finest at the camera)".to_string()
+                    }
                     (Some(WarpChoice::Perspective(_)), _) => "warped by perspective (the camera's frustum)".to_string(),
                     (_, Some(c)) => format!("clipmap ({} levels around the camera)", c.levels),
                     _ => "fitted".to_string(),

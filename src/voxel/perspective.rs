@@ -72,7 +72,12 @@ impl Perspective {
     /// `vec4 warp` of the shaders: the peak slope, the cube root of |det H|, the w triangles are
     /// clipped at (half the near plane's), and 0 (the perspective warp's mark).
     pub fn gpu(&self) -> Vec4 {
-        Vec4::new(self.peak_slope() as f32, self.to_texel.determinant().abs().cbrt() as f32, (0.5 * self.near) as f32, 0.0)
+        Vec4::new(
+            self.peak_slope() as f32,
+            self.to_texel.determinant().abs().cbrt() as f32,
+            (0.5 * self.near) as f32,
+            0.0,
+        )
     }
 }
 
@@ -87,7 +92,8 @@ impl VoxelGrid {
     pub fn perspective_dims(fitted: &VoxelGrid, camera: &Camera) -> UVec3 {
         let pow2 = |v: f64| 2f64.powf(v.max(1.0).log2().round()) as u32;
         let x = fitted.longest();
-        let y = pow2(x as f64 * camera.height.max(1) as f64 / camera.width.max(1) as f64).clamp(super::grid::MIN_RESOLUTION, x);
+        let y = pow2(x as f64 * camera.height.max(1) as f64 / camera.width.max(1) as f64)
+            .clamp(super::grid::MIN_RESOLUTION, x);
         let count = fitted.dims.as_dvec3().element_product();
         let z = pow2(count / (x as f64 * y as f64)).clamp(super::grid::MIN_RESOLUTION, x);
         UVec3::new(x, y, z)
@@ -110,7 +116,10 @@ impl VoxelGrid {
         let r = f.cross(camera.up.as_dvec3()).normalize_or_zero();
         let u = r.cross(f);
         if !(eye.is_finite() && f != DVec3::ZERO && r != DVec3::ZERO && camera.fov_y_deg.is_finite()) {
-            return Err(Error::param("camera", "the perspective warp needs a finite camera with a view direction and an up vector across it"));
+            return Err(Error::param(
+                "camera",
+                "the perspective warp needs a finite camera with a view direction and an up vector across it",
+            ));
         }
         let corners = (0..8).map(|i| {
             let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
@@ -122,7 +131,7 @@ impl VoxelGrid {
         });
         let depth = corners.map(|c| (c - eye).dot(f)).fold(f64::NEG_INFINITY, f64::max);
         let size = bounds.size().max_element() as f64;
-        if !(depth > 1e-3 * size) {
+        if depth.is_nan() || depth <= 1e-3 * size {
             return Err(Error::param("warp", "the perspective warp needs scene geometry in front of the camera"));
         }
         let ratio64 = ratio as f64;
@@ -161,13 +170,7 @@ impl VoxelGrid {
         let grid_to_world = DMat4::from_translation(origin) * DMat4::from_scale(extent);
         let to_texel = world_to_texel * grid_to_world;
         let warp = Perspective { to_texel, from_texel: to_texel.inverse(), near: e, ratio };
-        Ok(VoxelGrid {
-            origin: origin.as_vec3(),
-            voxel: voxel as f32,
-            dims,
-            warp: Warp::Perspective(warp),
-            clip: None,
-        })
+        Ok(VoxelGrid { origin: origin.as_vec3(), voxel: voxel as f32, dims, warp: Warp::Perspective(warp), clip: None })
     }
 }
 
@@ -182,7 +185,14 @@ mod tests {
     use super::*;
 
     fn camera() -> Camera {
-        Camera { eye: Vec3::new(1.0, 1.5, 4.0), target: Vec3::new(0.0, 1.0, 0.0), up: Vec3::Y, fov_y_deg: 50.0, width: 160, height: 90 }
+        Camera {
+            eye: Vec3::new(1.0, 1.5, 4.0),
+            target: Vec3::new(0.0, 1.0, 0.0),
+            up: Vec3::Y,
+            fov_y_deg: 50.0,
+            width: 160,
+            height: 90,
+        }
     }
 
     fn room() -> Aabb {
@@ -231,7 +241,9 @@ mod tests {
         let (ta, tb, tm) = (p.forward(a).unwrap(), p.forward(b).unwrap(), p.forward(0.3 * a + 0.7 * b).unwrap());
         assert!((tm - ta).cross(tb - ta).length() < 1e-9 * (tb - ta).length_squared().max(1.0));
         // Lateral texel width grows linearly with the distance from the apex: near over far = ratio.
-        let width = |z: f64| texel_world(&g, DVec3::new(0.5, 0.5, z)).distance(texel_world(&g, DVec3::new(0.5 + 1.0 / 64.0, 0.5, z)));
+        let width = |z: f64| {
+            texel_world(&g, DVec3::new(0.5, 0.5, z)).distance(texel_world(&g, DVec3::new(0.5 + 1.0 / 64.0, 0.5, z)))
+        };
         assert!((width(0.0) / width(1.0) - 0.25).abs() < 1e-4, "{} / {}", width(0.0), width(1.0));
         assert!(p.peak_slope() > p.slope(DVec3::splat(0.5)));
         // The slope is the Jacobian's determinant's cube root, by finite differences.

@@ -64,7 +64,8 @@ impl TessVoxelizer {
             "tess voxelizer",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::VOXELIZE_WORLD_VERT),
-                Stage::new(vk::ShaderStageFlags::TESSELLATION_CONTROL, shaders::VOXELIZE_TESS_TESC).grid(volume.grid.spec()),
+                Stage::new(vk::ShaderStageFlags::TESSELLATION_CONTROL, shaders::VOXELIZE_TESS_TESC)
+                    .grid(volume.grid.spec()),
                 Stage::new(vk::ShaderStageFlags::TESSELLATION_EVALUATION, shaders::VOXELIZE_TESS_TESE)
                     .spec(&spec)
                     .grid(volume.grid.spec()),

@@ -45,7 +45,12 @@ impl WarpChoice {
 
     /// `grid` (fitted to `bounds`) warped as chosen, its finest texels at `camera`: the
     /// perspective warp holds as many texels as the grid (`VoxelGrid::perspective_dims`).
-    pub fn apply(&self, grid: super::VoxelGrid, camera: &crate::scene::Camera, bounds: &crate::scene::Aabb) -> Result<super::VoxelGrid> {
+    pub fn apply(
+        &self,
+        grid: super::VoxelGrid,
+        camera: &crate::scene::Camera,
+        bounds: &crate::scene::Aabb,
+    ) -> Result<super::VoxelGrid> {
         match *self {
             WarpChoice::Function(s) => grid.warped(camera.eye, s),
             WarpChoice::Perspective(r) => {
@@ -57,6 +62,7 @@ impl WarpChoice {
 
 /// How a grid's texels spread over its box.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[allow(clippy::large_enum_variant)] // the perspective's two matrices; one grid per renderer, copied rarely
 pub enum Warp {
     /// Evenly: texel v is the box's voxel v.
     #[default]
@@ -151,7 +157,6 @@ pub struct Function {
     /// texels there are 1/α times as large as an unwarped grid's.
     pub end_slope: f32,
 }
-
 
 /// The half-cubic of one side: h(0) = 0, h(1) = 1, h'(0) = α, h'(1) = 1.5 − α/2, convex and
 /// increasing on [0, 1] (h'' = 3(1 − α)(1 − u) ≥ 0).

@@ -554,9 +554,11 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
                 let slopes = args.warp_slopes.clone().unwrap_or(vec![vct::voxel::warp::THESIS_END_SLOPE]);
                 v.extend(slopes.into_iter().map(|s| accuracy::Variant::warped(&default, s)));
                 let ratios = args.perspective_ratios.clone().unwrap_or(vec![vct::voxel::perspective::DEFAULT_RATIO]);
-                v.extend(ratios.into_iter().map(|r| {
-                    accuracy::Variant::warped_by(&default, vct::voxel::warp::WarpChoice::Perspective(r))
-                }));
+                v.extend(
+                    ratios
+                        .into_iter()
+                        .map(|r| accuracy::Variant::warped_by(&default, vct::voxel::warp::WarpChoice::Perspective(r))),
+                );
                 let clips = args.clipmaps.clone().unwrap_or_default();
                 v.extend(clips.into_iter().map(|(l, n)| accuracy::Variant::clipped(&default, l, n)));
             }
