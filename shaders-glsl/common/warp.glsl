@@ -118,6 +118,27 @@ vec3 warp_project_along(vec3 x, vec3 n, vec3 dims, mat4 proj) {
     return dims * (dq.xyz - q.xyz / q.w * dq.w) / q.w;
 }
 
+// Clips triangle `h` (homogeneous texture fractions) to w >= `clip`, where the perspective warp
+// has texels: the corners of what is left (none, a triangle, or a quad fanned from corner 0),
+// each as weights of the triangle's corners (for its attributes too). Returns their count.
+int warp_clip(vec4 h[3], float clip, out vec3 weights[4]) {
+    int count = 0;
+    for (int k = 0; k < 3; k++) {
+        int next = (k + 1) % 3;
+        float da = h[k].w - clip, db = h[next].w - clip;
+        vec3 a = vec3(k == 0, k == 1, k == 2), b = vec3(next == 0, next == 1, next == 2);
+        if (da >= 0.0) weights[count++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) weights[count++] = mix(a, b, da / (da - db));
+    }
+    return count;
+}
+
+// The point of triangle `h` with corner weights `b`, among `dims` texels.
+vec3 warp_clipped_texel(vec4 h[3], vec3 b, vec3 dims) {
+    vec4 q = h[0] * b.x + h[1] * b.y + h[2] * b.z;
+    return q.xyz / q.w * dims;
+}
+
 // Texture fraction of grid fraction `x`, by either warp.
 vec3 warp_to_texture(vec3 x, vec4 warp, mat4 proj) {
     return warp_projective(warp) ? warp_project(x, warp, proj) : warp_forward(x, warp);

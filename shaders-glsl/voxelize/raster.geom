@@ -133,13 +133,6 @@ void voxelize(vec3 p[3]) {
     EndPrimitive();
 }
 
-// A clipped polygon's corner: homogeneous texture fraction and attributes.
-struct Corner {
-    vec4 h;
-    vec3 normal;
-    vec2 uv;
-};
-
 void main() {
     vec3 p[3];
     if (!warp_projective(voxel.warp)) {
@@ -154,27 +147,17 @@ void main() {
     // Perspective: clip against w >= the clip distance (no texel lies nearer the apex), then
     // map each corner among the texels.
     vec3 dims = vec3(voxel.dims.xyz);
-    Corner c[3];
-    for (int i = 0; i < 3; i++) {
-        c[i] = Corner(warp_project_h(to_grid_space(in_world[i]) / dims, voxel.warp_proj), in_normal[i], in_uv[i]);
-    }
-    Corner poly[4];
-    int count = 0;
-    for (int i = 0; i < 3; i++) {
-        Corner a = c[i], b = c[(i + 1) % 3];
-        float da = a.h.w - voxel.warp.z, db = b.h.w - voxel.warp.z;
-        if (da >= 0.0) poly[count++] = a;
-        if ((da >= 0.0) != (db >= 0.0)) {
-            float t = da / (da - db);
-            poly[count++] = Corner(mix(a.h, b.h, t), mix(a.normal, b.normal, t), mix(a.uv, b.uv, t));
-        }
-    }
+    vec4 h[3];
+    for (int i = 0; i < 3; i++) h[i] = warp_project_h(to_grid_space(in_world[i]) / dims, voxel.warp_proj);
+    vec3 corner[4];
+    int count = warp_clip(h, voxel.warp.z, corner);
     for (int first = 1; first + 1 < count; first++) {
         int k[3] = int[3](0, first, first + 1);
         for (int i = 0; i < 3; i++) {
-            p[i] = poly[k[i]].h.xyz / poly[k[i]].h.w * dims;
-            nrm[i] = poly[k[i]].normal;
-            uv[i] = poly[k[i]].uv;
+            vec3 b = corner[k[i]];
+            p[i] = warp_clipped_texel(h, b, dims);
+            nrm[i] = in_normal[0] * b.x + in_normal[1] * b.y + in_normal[2] * b.z;
+            uv[i] = in_uv[0] * b.x + in_uv[1] * b.y + in_uv[2] * b.z;
         }
         voxelize(p);
     }

@@ -40,17 +40,12 @@ void main() {
         bool projective = warp_projective(voxel.warp), fill = true;
         if (projective) {
             vec3 n = vec3(voxel.dims.xyz);
-            vec4 h[3], poly[4];
+            vec4 h[3];
             for (int k = 0; k < 3; k++) h[k] = warp_project_h(t[k] / n, voxel.warp_proj);
-            int count = 0;
-            for (int k = 0; k < 3; k++) {
-                vec4 a = h[k], b = h[(k + 1) % 3];
-                float da = a.w - voxel.warp.z, db = b.w - voxel.warp.z;
-                if (da >= 0.0) poly[count++] = a;
-                if ((da >= 0.0) != (db >= 0.0)) poly[count++] = mix(a, b, da / (da - db));
-            }
+            vec3 corner[4];
+            int count = warp_clip(h, voxel.warp.z, corner);
             fill = count >= 3;  // none of it in front of the clip plane: no texel to fill
-            for (int k = 0; k < 4 && fill; k++) t[k] = poly[min(k, count - 1)].xyz / poly[min(k, count - 1)].w * n;
+            for (int k = 0; k < 4 && fill; k++) t[k] = warp_clipped_texel(h, corner[min(k, count - 1)], n);
         }
         for (int i = 0; i < 27 && fill; i++) {
             ivec3 c = own + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;

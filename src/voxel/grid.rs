@@ -147,15 +147,18 @@ impl VoxelGrid {
         self.warp.forward3(x) * self.dims.as_dvec3()
     }
 
+    /// The world position of texture fraction `t` (the inverse of [`Self::texel_of`] over dims).
+    pub fn world_of(&self, t: glam::DVec3) -> Vec3 {
+        let size = (self.dims.as_vec3() * self.voxel).as_dvec3();
+        (self.origin.as_dvec3() + self.warp.inverse3(t) * size).as_vec3()
+    }
+
     /// The world box of texel `v` (a perspective texel, a frustum's cell: the box around it).
     pub fn texel_bounds(&self, v: UVec3) -> Aabb {
-        let n = self.dims.as_dvec3();
-        let size = (self.dims.as_vec3() * self.voxel).as_dvec3();
         let mut b = Aabb::EMPTY;
         for i in 0..8u32 {
             let corner = v + UVec3::new(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-            let x = self.warp.inverse3(corner.as_dvec3() / n);
-            b.grow((self.origin.as_dvec3() + x * size).as_vec3());
+            b.grow(self.world_of(corner.as_dvec3() / self.dims.as_dvec3()));
         }
         b
     }

@@ -19,7 +19,7 @@
 //! The shaders' copy is in `shaders-glsl/common/warp.glsl`; the exact coverage reference maps
 //! triangles with its own code (`reference::coverage::RefPerspective`).
 
-use glam::{DMat4, DVec3, DVec4, UVec3, Vec3, Vec4};
+use glam::{DMat4, DVec3, DVec4, UVec3, Vec4};
 
 use super::grid::VoxelGrid;
 use super::warp::Warp;
@@ -174,15 +174,10 @@ impl VoxelGrid {
     }
 }
 
-/// The world position of texture fraction `t` of a perspective grid (for tests and messages).
-pub fn texel_world(grid: &VoxelGrid, t: DVec3) -> Vec3 {
-    let x = grid.warp.inverse3(t);
-    (grid.origin.as_dvec3() + x * (grid.dims.as_dvec3() * grid.voxel as f64)).as_vec3()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     fn camera() -> Camera {
         Camera {
@@ -216,13 +211,13 @@ mod tests {
         let c = camera();
         let g = VoxelGrid::perspective(&c, &room(), UVec3::splat(64), 0.25).unwrap();
         // The eye is on the near face's centre; the view direction is the texel volume's z.
-        let near = texel_world(&g, DVec3::new(0.5, 0.5, 0.0));
+        let near = g.world_of(DVec3::new(0.5, 0.5, 0.0));
         assert!(near.distance(c.eye) < 1e-4, "near centre {near}");
-        let ahead = texel_world(&g, DVec3::new(0.5, 0.5, 0.5));
+        let ahead = g.world_of(DVec3::new(0.5, 0.5, 0.5));
         let dir = (c.target - c.eye).normalize();
         assert!((ahead - c.eye).normalize().dot(dir) > 0.99999, "{ahead}");
         // The far face lies at the depth of the room's farthest corner in front of the eye.
-        let far = texel_world(&g, DVec3::new(0.5, 0.5, 1.0));
+        let far = g.world_of(DVec3::new(0.5, 0.5, 1.0));
         let corners = [room().min, room().max, Vec3::new(3.0, 0.0, -6.0), Vec3::new(-3.0, 3.0, -6.0)];
         let depth = corners.iter().map(|k| (*k - c.eye).dot(dir)).fold(f32::MIN, f32::max);
         assert!(((far - c.eye).dot(dir) - depth).abs() < 1e-3, "{far} vs depth {depth}");
@@ -241,9 +236,8 @@ mod tests {
         let (ta, tb, tm) = (p.forward(a).unwrap(), p.forward(b).unwrap(), p.forward(0.3 * a + 0.7 * b).unwrap());
         assert!((tm - ta).cross(tb - ta).length() < 1e-9 * (tb - ta).length_squared().max(1.0));
         // Lateral texel width grows linearly with the distance from the apex: near over far = ratio.
-        let width = |z: f64| {
-            texel_world(&g, DVec3::new(0.5, 0.5, z)).distance(texel_world(&g, DVec3::new(0.5 + 1.0 / 64.0, 0.5, z)))
-        };
+        let width =
+            |z: f64| g.world_of(DVec3::new(0.5, 0.5, z)).distance(g.world_of(DVec3::new(0.5 + 1.0 / 64.0, 0.5, z)));
         assert!((width(0.0) / width(1.0) - 0.25).abs() < 1e-4, "{} / {}", width(0.0), width(1.0));
         assert!(p.peak_slope() > p.slope(DVec3::splat(0.5)));
         // The slope is the Jacobian's determinant's cube root, by finite differences.

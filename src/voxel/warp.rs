@@ -91,15 +91,6 @@ impl Warp {
         }
     }
 
-    /// The largest number of texels to a grid voxel, anywhere in the grid (1: no warp).
-    pub fn peak_slope(&self) -> f32 {
-        match self {
-            Warp::None => 1.0,
-            Warp::Function(f) => f.peak_slope(),
-            Warp::Perspective(p) => p.peak_slope() as f32,
-        }
-    }
-
     /// `vec4 warp` of the shaders (common/warp.glsl): the function's centre and end slope, or
     /// for the perspective warp its peak slope, the cube root of its matrix's determinant and
     /// the w it clips triangles at, with w = 0.
