@@ -276,9 +276,10 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
 // Where in level k a sample at grid point `g` of a cone `diameter` voxels of level 0 wide,
 // `height` voxels of level 0 above its surface's plane, reads: texture coordinates `pos` and mip
 // `level` (of level k's texels). Returns how far the filter's support lies inside the level's
-// box (voxels of level 0; negative: it reaches out); `half_texel` is the filter's half texel.
+// box from its closed faces (voxels of level 0; negative: it reaches out; clip_room), and in
+// `reach` from all its faces; `half_texel` is the filter's half texel.
 float clip_place(vec3 g, float diameter, float height, int k, ConeParams p, out vec3 pos, out float level,
-                 out float half_texel) {
+                 out float half_texel, out float reach) {
     float s = frame.clip_levels[k].w;
     float l = log2(max(diameter / s, 1.0)) + p.lod_offset;
     if ((p.flags & CONE_FLAG_SELF_CLAMP) != 0u) l = min(l, self_clamp_level(height / s, p.surface));
@@ -290,7 +291,8 @@ float clip_place(vec3 g, float diameter, float height, int k, ConeParams p, out 
     float h = 0.5 * exp2(max(ceil(level), 1.0));
     t.z = clamp(t.z, slab + h, slab + n - h);
     pos = t / frame.voxel_dims.xyz;
-    return clip_inside(g, k) - half_texel;
+    reach = clip_inside(g, k) - half_texel;
+    return clip_room(g, k) - half_texel;
 }
 
 // One sample of the volume at `pos` and `level`: below level 1 level 0 blended with level 1, as
@@ -334,19 +336,21 @@ vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D a
         vec3 g = start + m.dist * dir;
         float diameter = 2.0 * m.dist * tan_half, height = bias + m.dist * rise;
         vec3 pos;
-        float level, half_texel;
+        float level, half_texel, reach;
         int k = 0;
-        float room = clip_place(g, diameter, height, 0, p, pos, level, half_texel);
-        while (room < 0.0 && k + 1 < levels) room = clip_place(g, diameter, height, ++k, p, pos, level, half_texel);
-        // Left the coarsest level: its filter no longer reaches inside (as next_sample).
-        if (room <= -2.0 * half_texel) break;
+        float room = clip_place(g, diameter, height, 0, p, pos, level, half_texel, reach);
+        while (room < 0.0 && k + 1 < levels)
+            room = clip_place(g, diameter, height, ++k, p, pos, level, half_texel, reach);
+        // Left the coarsest level, or passed an open face (the scene's end): its filter no
+        // longer reaches inside (as next_sample).
+        if (reach <= -2.0 * half_texel) break;
         float s = frame.clip_levels[k].w;
         vec4 sample_k = clip_read(volume, chain, moment, atlas, aniso, pos, level, dir, w, chains, p);
         float band = frame.clip.z * frame.clip.y * s;
         if (k + 1 < levels && room < band) {
             vec3 pos2;
-            float level2, half2;
-            clip_place(g, diameter, height, k + 1, p, pos2, level2, half2);
+            float level2, half2, reach2;
+            clip_place(g, diameter, height, k + 1, p, pos2, level2, half2, reach2);
             vec4 outer = clip_read(volume, chain, moment, atlas, aniso, pos2, level2, dir, w, chains, p);
             sample_k = mix(sample_k, outer, 1.0 - clamp(room / band, 0.0, 1.0));
         }

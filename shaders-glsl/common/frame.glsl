@@ -44,6 +44,7 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
                              // z the blend band (of a level's side)
     vec4 clip_levels[MAX_CLIP_LEVELS]; // each level's minimum corner (xyz, voxels of level 0 from
                                        // voxel_origin) and its voxel over level 0's (w)
+    vec4 clip_scene[2];      // the scene's bounds (minimum, maximum; voxels of level 0 from voxel_origin)
 } frame;
 
 // Whether the pipeline was built for a clipmap (voxel::clipmap): off, every clip_on() is false at
@@ -65,6 +66,17 @@ int clip_count() {
 float clip_inside(vec3 g, int k) {
     vec4 l = frame.clip_levels[k];
     vec3 lo = g - l.xyz, hi = l.xyz + l.w * frame.clip.y - g;
+    return min(min(min(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
+}
+
+// How far grid point `g` lies inside level k's box from its closed faces: an open face, half a
+// voxel of the level or more beyond the scene (voxel::clipmap::Clipmap::open), has nothing beyond
+// it in any level, so a sample near it stays in level k and does not blend into the next.
+float clip_room(vec3 g, int k) {
+    vec4 l = frame.clip_levels[k];
+    vec3 top = l.xyz + l.w * frame.clip.y, slack = vec3(0.499 * l.w);
+    vec3 lo = mix(g - l.xyz, vec3(1e30), lessThanEqual(l.xyz, frame.clip_scene[0].xyz - slack));
+    vec3 hi = mix(top - g, vec3(1e30), greaterThanEqual(top, frame.clip_scene[1].xyz + slack));
     return min(min(min(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
 }
 

@@ -247,7 +247,7 @@ impl FrameUniforms {
             View::Radiance(l) => l.min(f.mip_levels.saturating_sub(1)),
             _ => 0,
         };
-        let (clip, clip_levels) = f.grid.clip.map_or(Default::default(), |c| c.gpu());
+        let (clip, clip_levels, clip_scene) = f.grid.clip.map_or(Default::default(), |c| c.gpu());
         FrameUniforms {
             view_proj,
             inv_view_proj: view_proj.inverse(),
@@ -276,6 +276,7 @@ impl FrameUniforms {
             voxel_warp_unproj: f.grid.warp.unproj(),
             clip,
             clip_levels,
+            clip_scene,
         }
     }
 }

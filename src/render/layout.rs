@@ -81,9 +81,9 @@ fn clipmap_grid(
             format!("clipmap levels are cubes of --res voxels around the camera: {other} does not apply"),
         ));
     }
-    let extent =
-        c.extent.unwrap_or_else(|| Clipmap::default_extent(&scene.mesh.bounds, scene.camera.eye, resolution, c.levels));
-    let clip = Clipmap::around(scene.camera.eye, extent, resolution, c.levels)?;
+    let bounds = &scene.mesh.bounds;
+    let extent = c.extent.unwrap_or_else(|| Clipmap::default_extent(bounds, resolution, c.levels));
+    let clip = Clipmap::around(scene.camera.eye, extent, resolution, c.levels, Some(bounds))?;
     let grid = clip.stack_grid();
     let max = ctx.info.limits.max_image_dimension3_d;
     if grid.dims.z > max {

@@ -63,6 +63,9 @@ pub struct FrameUniforms {
     /// A clipmap's levels (`voxel::clipmap::Clipmap::gpu`; x = 0: none).
     pub clip: Vec4,
     pub clip_levels: [Vec4; config::MAX_CLIP_LEVELS as usize],
+    /// The scene's bounds (minimum, maximum) in voxels of level 0 from its corner: a level's face
+    /// beyond them is open (`voxel::clipmap::Clipmap::open`).
+    pub clip_scene: [Vec4; 2],
 }
 
 /// One light as the shaders read it (`LightData` in common/frame.glsl).

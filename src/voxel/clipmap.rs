@@ -3,6 +3,14 @@
 //! own voxel size, so that as the point moves each level shifts in whole voxels of its own and
 //! static geometry voxelizes the same way in every frame.
 //!
+//! Levels stay inside the scene. Centred on a camera near the scene's end, a level would spend
+//! up to half its voxels on empty space beyond it (measured on Sponza: docs/benchmarks.md,
+//! "Clipmaps"). So a level is moved, in whole voxels, until it lies inside the scene's bounds, or
+//! holds them where it is larger than they are; the coarsest holds the whole scene wherever the
+//! camera is, and is no larger than that. A face of a level that lies beyond the scene is *open*:
+//! no level holds anything beyond it, so a cone sample near it stays in that level instead of
+//! moving out to the next (common/frame.glsl, `clip_room`).
+//!
 //! The levels are stored stacked along z in one volume of `res × res × (levels · res)` texels
 //! (level k in texels `k·res .. (k+1)·res` of z): the radiance mip chain of such a stack keeps
 //! the levels apart (mip m halves each slab exactly, since `res` is a power of two), so the
@@ -10,7 +18,7 @@
 //! box each level covers, and what the shaders are told of it (common/frame.glsl maps points to
 //! levels, common/cone.glsl picks the level a cone sample reads; docs/design/clipmaps.md).
 
-use glam::{UVec3, Vec3, Vec4};
+use glam::{BVec3, UVec3, Vec3, Vec4};
 
 use super::grid::{VoxelGrid, MAX_RESOLUTION, MIN_RESOLUTION};
 use crate::error::{Error, Result};
@@ -31,11 +39,20 @@ pub struct Clipmap {
     pub voxel0: f32,
     /// World position of each level's minimum corner (`levels` entries used).
     pub origins: [Vec3; MAX_LEVELS as usize],
+    /// The scene's bounds the levels stay in (None: they follow the centre wherever it goes).
+    pub scene: Option<crate::scene::Aabb>,
 }
 
 impl Clipmap {
-    /// `levels` levels of `res`³ voxels around `centre`, the finest `extent0` world units wide.
-    pub fn around(centre: Vec3, extent0: f32, res: u32, levels: u32) -> Result<Self> {
+    /// `levels` levels of `res`³ voxels around `centre`, the finest `extent0` world units wide,
+    /// each kept inside `scene` (or holding it) when given.
+    pub fn around(
+        centre: Vec3,
+        extent0: f32,
+        res: u32,
+        levels: u32,
+        scene: Option<&crate::scene::Aabb>,
+    ) -> Result<Self> {
         if !(MIN_RESOLUTION..=MAX_RESOLUTION).contains(&res) || !res.is_power_of_two() {
             return Err(Error::param(
                 "res",
@@ -48,18 +65,58 @@ impl Clipmap {
         if !(extent0.is_finite() && extent0 > 0.0 && centre.is_finite()) {
             return Err(Error::param("clipmap", format!("finest extent {extent0} around {centre} is not usable")));
         }
-        let mut c = Clipmap { res, levels, voxel0: extent0 / res as f32, origins: [Vec3::ZERO; MAX_LEVELS as usize] };
+        if let Some(b) = scene.filter(|b| b.is_empty() || !(b.min.is_finite() && b.max.is_finite())) {
+            return Err(Error::param(
+                "clipmap",
+                format!("the scene's bounds {b:?} hold no finite box to place levels in"),
+            ));
+        }
+        let mut c = Clipmap {
+            res,
+            levels,
+            voxel0: extent0 / res as f32,
+            origins: [Vec3::ZERO; MAX_LEVELS as usize],
+            scene: scene.copied(),
+        };
         c.recentre(centre);
         Ok(c)
     }
 
-    /// Moves every level to `centre`, each in whole voxels of its own size.
+    /// Moves every level to `centre`, each in whole voxels of its own size, and then (with the
+    /// scene's bounds) by whole voxels until it lies inside them or holds them.
     pub fn recentre(&mut self, centre: Vec3) {
         for k in 0..self.levels {
             let v = self.voxel(k);
             let half = self.extent(k) * 0.5;
-            self.origins[k as usize] = ((centre - Vec3::splat(half)) / v).floor() * v;
+            let mut origin = ((centre - Vec3::splat(half)) / v).floor() * v;
+            if let Some((low, high)) = self.origin_range(k) {
+                origin = origin.clamp(low.min(high), low.max(high));
+            }
+            self.origins[k as usize] = origin;
         }
+    }
+
+    /// The corners (on level `k`'s lattice) between which the level wastes nothing beyond the
+    /// scene: `low`, the highest whose minimum face lies half a voxel or more below the scene's
+    /// minimum, and `high`, the lowest whose maximum face lies half a voxel or more above its
+    /// maximum. Where the level is smaller than the scene, corners from `low` to `high` keep it
+    /// inside; where larger, corners from `high` to `low` keep the scene in it.
+    fn origin_range(&self, k: u32) -> Option<(Vec3, Vec3)> {
+        let b = self.scene?;
+        let v = self.voxel(k);
+        let low = ((b.min - Vec3::splat(0.5 * v)) / v).floor() * v;
+        let high = ((b.max + Vec3::splat(0.5 * v)) / v).ceil() * v - Vec3::splat(self.extent(k));
+        Some((low, high))
+    }
+
+    /// Which faces of level `k` lie beyond the scene, half a voxel of the level or more (its
+    /// minimum faces, its maximum faces): open faces, beyond which no level holds anything.
+    /// The shaders test the same (common/frame.glsl, `clip_room`).
+    pub fn open(&self, k: u32) -> (BVec3, BVec3) {
+        let Some(b) = self.scene else { return (BVec3::FALSE, BVec3::FALSE) };
+        let (v, o) = (self.voxel(k), self.origins[k as usize]);
+        let slack = Vec3::splat(0.5 * v - 1e-3 * v);
+        (o.cmple(b.min - slack), (o + Vec3::splat(self.extent(k))).cmpge(b.max + slack))
     }
 
     /// Voxel edge of level `k`.
@@ -83,13 +140,14 @@ impl Clipmap {
         }
     }
 
-    /// The finest level's extent for `levels` levels of `res` voxels over a scene of `bounds`
-    /// seen from `eye`: the coarsest holds the whole scene around `eye`, with a voxel to spare
-    /// for its snapping on every side (a surface outside every level gets no indirect light).
-    /// Levels are no larger than that: what lies beyond the scene is empty.
-    pub fn default_extent(bounds: &crate::scene::Aabb, eye: Vec3, res: u32, levels: u32) -> f32 {
-        let far = (eye - bounds.min).max(bounds.max - eye).max_element().max(1e-6);
-        let coarsest = 2.0 * far * res as f32 / res.saturating_sub(2).max(1) as f32;
+    /// The finest level's extent for `levels` levels of `res` voxels over a scene of `bounds`:
+    /// the coarsest holds the whole scene wherever the camera is (the levels stay in the scene),
+    /// with half a voxel to spare on every side and up to a voxel more for its lattice, so its
+    /// voxel is the scene's longest side over `res - 3` (a surface outside every level gets no
+    /// indirect light). Levels are no larger than that: what lies beyond the scene is empty.
+    pub fn default_extent(bounds: &crate::scene::Aabb, res: u32, levels: u32) -> f32 {
+        let longest = bounds.size().max_element().max(1e-6);
+        let coarsest = longest * res as f32 / res.saturating_sub(3).max(1) as f32;
         coarsest / (1u32 << levels.clamp(1, MAX_LEVELS).saturating_sub(1)) as f32
     }
 
@@ -98,16 +156,21 @@ impl Clipmap {
         VoxelGrid { clip: Some(*self), dims: self.stack_dims(), ..self.level_grid(0) }
     }
 
-    /// For the shaders (`FrameUniforms::clip`, `clip_levels`; common/frame.glsl): the level
-    /// count, a level's side in texels and the blend band (of a level's side); and each level's
-    /// minimum corner in voxels of level 0 from level 0's, with its voxel over level 0's.
-    pub fn gpu(&self) -> (Vec4, [Vec4; MAX_LEVELS as usize]) {
+    /// For the shaders (`FrameUniforms::clip`, `clip_levels`, `clip_scene`; common/frame.glsl):
+    /// the level count, a level's side in texels and the blend band (of a level's side); each
+    /// level's minimum corner in voxels of level 0 from level 0's, with its voxel over level 0's;
+    /// and the scene's bounds in the same units (unbounded without them: no face is open).
+    pub fn gpu(&self) -> (Vec4, [Vec4; MAX_LEVELS as usize], [Vec4; 2]) {
         let mut levels = [Vec4::ZERO; MAX_LEVELS as usize];
         for k in 0..self.levels {
             let at = (self.origins[k as usize] - self.origins[0]) / self.voxel0;
             levels[k as usize] = at.round().extend((1u32 << k) as f32);
         }
-        (Vec4::new(self.levels as f32, self.res as f32, crate::config::CLIP_BLEND_BAND, 0.0), levels)
+        let scene = match self.scene {
+            Some(b) => [b.min, b.max].map(|p| ((p - self.origins[0]) / self.voxel0).extend(0.0)),
+            None => [Vec4::splat(-1e30), Vec4::splat(1e30)],
+        };
+        (Vec4::new(self.levels as f32, self.res as f32, crate::config::CLIP_BLEND_BAND, 0.0), levels, scene)
     }
 
     /// The texel extent of the stack that holds every level.
@@ -122,7 +185,7 @@ mod tests {
 
     #[test]
     fn levels_nest_and_double() {
-        let c = Clipmap::around(Vec3::new(1.3, -2.7, 0.4), 4.0, 32, 5).unwrap();
+        let c = Clipmap::around(Vec3::new(1.3, -2.7, 0.4), 4.0, 32, 5, None).unwrap();
         for k in 0..5 {
             assert!((c.extent(k) - 4.0 * (1 << k) as f32).abs() < 1e-4);
         }
@@ -136,7 +199,7 @@ mod tests {
 
     #[test]
     fn snapping_moves_each_level_in_whole_voxels_of_its_own() {
-        let mut c = Clipmap::around(Vec3::ZERO, 8.0, 16, 4).unwrap();
+        let mut c = Clipmap::around(Vec3::ZERO, 8.0, 16, 4, None).unwrap();
         let before = c.origins;
         for step in 1..200 {
             c.recentre(Vec3::new(0.013, 0.007, -0.021) * step as f32);
@@ -147,7 +210,7 @@ mod tests {
         }
         // A coarse level moves less often than a fine one.
         let moves = |k: usize| {
-            let mut c = Clipmap::around(Vec3::ZERO, 8.0, 16, 4).unwrap();
+            let mut c = Clipmap::around(Vec3::ZERO, 8.0, 16, 4, None).unwrap();
             let mut last = c.origins[k];
             let mut n = 0;
             for step in 1..400 {
@@ -160,15 +223,33 @@ mod tests {
         assert!(moves(0) > moves(1) && moves(1) > moves(2), "{} {} {}", moves(0), moves(1), moves(2));
     }
 
+    /// A long hall, like Sponza's atrium (34.8 × 15 × 22 m).
+    fn hall() -> crate::scene::Aabb {
+        crate::scene::Aabb { min: Vec3::new(-17.4, 0.0, -11.0), max: Vec3::new(17.4, 15.0, 11.0) }
+    }
+
+    /// Cameras over the hall and beyond it, from a fixed sequence.
+    fn cameras() -> impl Iterator<Item = Vec3> {
+        let b = hall();
+        (0..400u32).map(move |i| {
+            let f = |s: u32| ((i.wrapping_mul(2654435761).wrapping_add(s) % 1000) as f32 / 999.0) * 1.3 - 0.15;
+            b.min + b.size() * Vec3::new(f(1), f(7), f(13))
+        })
+    }
+
     #[test]
     fn the_default_extent_holds_the_scene_and_the_shaders_get_each_level_in_level_0_voxels() {
-        let bounds = crate::scene::Aabb { min: Vec3::new(-15.0, 0.0, -6.0), max: Vec3::new(15.0, 12.0, 6.0) };
+        let bounds = hall();
         let eye = Vec3::new(-13.0, 2.0, 0.0);
-        let e = Clipmap::default_extent(&bounds, eye, 64, 4);
-        let c = Clipmap::around(eye, e, 64, 4).unwrap();
+        let e = Clipmap::default_extent(&bounds, 64, 4);
+        // The coarsest level's voxel is the hall's length over 61, not twice the farthest
+        // distance from the camera: the levels stay in the scene.
+        assert!((e * 8.0 / 64.0 - 34.8 / 61.0).abs() < 1e-4, "{e}");
+        let c = Clipmap::around(eye, e, 64, 4, Some(&bounds)).unwrap();
         let coarsest = c.level_grid(3).bounds();
         assert!(coarsest.min.cmple(bounds.min).all() && coarsest.max.cmpge(bounds.max).all(), "{coarsest:?}");
-        let (head, levels) = c.gpu();
+        let (head, levels, scene) = c.gpu();
+        assert_eq!(scene[0].truncate(), (bounds.min - c.origins[0]) / c.voxel0);
         assert_eq!((head.x, head.y), (4.0, 64.0));
         for k in 0..4 {
             let l = levels[k as usize];
@@ -184,10 +265,73 @@ mod tests {
         assert_eq!(g.voxelized().dims, UVec3::splat(64));
     }
 
+    /// Wherever the camera is (inside the hall, near its ends, beyond it), the coarsest level
+    /// holds the whole hall; every level lies inside the hall or holds it along each axis, with
+    /// less than a voxel (plus the half voxel to spare) beyond it; the levels still nest; and a
+    /// face is open exactly when it lies beyond the hall.
+    #[test]
+    fn levels_stay_in_the_scene_and_nest() {
+        let b = hall();
+        let e = Clipmap::default_extent(&b, 32, 4);
+        let mut c = Clipmap::around(Vec3::ZERO, e, 32, 4, Some(&b)).unwrap();
+        for eye in cameras() {
+            c.recentre(eye);
+            let top = c.level_grid(3).bounds();
+            assert!(top.min.cmple(b.min).all() && top.max.cmpge(b.max).all(), "{eye}: {top:?}");
+            for k in 0..4 {
+                let (v, box_k) = (c.voxel(k), c.level_grid(k).bounds());
+                let (open_lo, open_hi) = c.open(k);
+                let (open_lo, open_hi): ([bool; 3], [bool; 3]) = (open_lo.into(), open_hi.into());
+                for a in 0..3 {
+                    let (lo, hi) = (box_k.min[a], box_k.max[a]);
+                    if hi - lo < b.max[a] - b.min[a] {
+                        // Inside: no further out than its lattice needs.
+                        assert!(
+                            lo > b.min[a] - 1.5 * v - 1e-4 && hi < b.max[a] + 1.5 * v + 1e-4,
+                            "{eye} level {k} axis {a}"
+                        );
+                    } else {
+                        // Holding the scene: both faces open.
+                        assert!(open_lo[a] && open_hi[a], "{eye} level {k} axis {a}: {lo} {hi}");
+                    }
+                    assert_eq!(open_lo[a], lo <= b.min[a] - 0.499 * v, "{eye} level {k} axis {a}");
+                    assert_eq!(open_hi[a], hi >= b.max[a] + 0.499 * v, "{eye} level {k} axis {a}");
+                }
+                if k > 0 {
+                    let inner = c.level_grid(k - 1).bounds();
+                    assert!(box_k.min.cmple(inner.min).all() && box_k.max.cmpge(inner.max).all(), "{eye}: level {k}");
+                }
+            }
+        }
+        // A camera in the middle of the hall sees the levels centred on it (Wicked Engine's
+        // placement), its finest level closed on every side.
+        c.recentre(Vec3::new(0.0, 7.5, 0.0));
+        let fine = c.level_grid(0).bounds();
+        assert!(((fine.min + fine.max) * 0.5 - Vec3::new(0.0, 7.5, 0.0)).abs().max_element() <= c.voxel(0));
+        assert_eq!(c.open(0), (BVec3::FALSE, BVec3::FALSE));
+    }
+
+    /// Inside the scene the levels still move in whole voxels of their own.
+    #[test]
+    fn levels_in_the_scene_move_in_whole_voxels() {
+        let b = hall();
+        let mut c = Clipmap::around(Vec3::ZERO, 3.0, 16, 4, Some(&b)).unwrap();
+        let before = c.origins;
+        for eye in cameras() {
+            c.recentre(eye);
+            for k in 0..4 {
+                let moved = (c.origins[k as usize] - before[k as usize]) / c.voxel(k);
+                assert!((moved - moved.round()).abs().max_element() < 1e-3, "level {k} moved {moved}");
+            }
+        }
+    }
+
     #[test]
     fn bad_parameters_name_themselves() {
-        assert!(Clipmap::around(Vec3::ZERO, 4.0, 48, 4).unwrap_err().to_string().contains("res"));
-        assert!(Clipmap::around(Vec3::ZERO, 4.0, 32, 0).unwrap_err().to_string().contains("clipmap"));
-        assert!(Clipmap::around(Vec3::ZERO, f32::NAN, 32, 4).unwrap_err().to_string().contains("clipmap"));
+        assert!(Clipmap::around(Vec3::ZERO, 4.0, 48, 4, None).unwrap_err().to_string().contains("res"));
+        assert!(Clipmap::around(Vec3::ZERO, 4.0, 32, 0, None).unwrap_err().to_string().contains("clipmap"));
+        assert!(Clipmap::around(Vec3::ZERO, f32::NAN, 32, 4, None).unwrap_err().to_string().contains("clipmap"));
+        let empty = crate::scene::Aabb::EMPTY;
+        assert!(Clipmap::around(Vec3::ZERO, 4.0, 32, 4, Some(&empty)).unwrap_err().to_string().contains("bounds"));
     }
 }
