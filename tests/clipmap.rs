@@ -45,11 +45,18 @@ fn mean(f: &FrameImages) -> f64 {
     (0..n).map(|p| (f.hdr[4 * p] + f.hdr[4 * p + 1] + f.hdr[4 * p + 2]) as f64).sum::<f64>() / n as f64
 }
 
-/// One level is a cube of --res voxels around the camera snapped to its voxel: the volume that
-/// follows the camera, texel for texel, so the same image.
+/// One level of --res voxels wider than the room holds it, centred on it and snapped to its
+/// voxel: from a camera whose snapped following volume has the same corner, the two are the same
+/// texels, so the same image (the clipmap's march against the grid's).
 #[test]
 fn one_level_is_the_snapped_following_volume() {
-    let scene = inside();
+    let mut scene = inside();
+    scene.camera.eye = Vec3::new(0.05, 2.8, 0.3);
+    scene.camera.target = Vec3::new(0.05, 2.8, -2.0);
+    let bounds = scene.mesh.bounds;
+    let level = vct::voxel::clipmap::Clipmap::around(scene.camera.eye, 12.0, 32, 1, Some(&bounds)).unwrap();
+    let grid = vct::voxel::VoxelGrid::around(scene.camera.eye, 12.0, 32, true).unwrap();
+    assert!((level.origins[0] - grid.origin).abs().max_element() < 1e-5, "{:?} {}", level.origins[0], grid.origin);
     let follow = RenderOptions { follow: Some(Follow { extent: 12.0, snap: true }), ..options(32, View::Full) };
     let a = render(&scene, follow);
     let b = render(&scene, clipped(1, 32, Some(12.0), View::Full));

@@ -29,6 +29,32 @@ pub const DEFAULT_LEVELS: u32 = 4;
 /// Most clipmap levels (the stack's z extent is `levels · res` ≤ 8 · 512).
 pub const MAX_LEVELS: u32 = crate::config::MAX_CLIP_LEVELS;
 
+/// A level moves in steps of 1/16 of its side (4 voxels of 64, 2 of 32), not voxel by voxel.
+/// A level's mips group its voxels in blocks aligned to its corner, so a step of one voxel
+/// regroups every mip above 0 across the whole level, and the cones' light jumps: measured on a
+/// slow pan across Sponza's atrium (4 levels of 64, 3 cm a frame), adjacent frames differed by
+/// FLIP 0.0639 on average and 0.0900 at the steps with one-voxel steps, 0.0631 / 0.0816 with two,
+/// and 0.0619 / 0.0629 with four, a fitted grid's 0.0610 / 0.0628 (docs/benchmarks.md,
+/// "Clipmaps"). A step of 2^S voxels keeps mips up to S grouped alike; the price is a level
+/// lagging the camera by up to one step, 1/16 of its reach.
+pub const STEPS_PER_SIDE: u32 = 16;
+
+/// One axis of a level `e` wide (voxel `v`, step `s`) over a scene from `lo` to `hi`, its corner
+/// at `follow` when following the camera: the corner that keeps it inside the scene, with half
+/// a voxel to spare, or, where it is wider than the scene, holds the scene, centred on it.
+fn place(follow: f32, lo: f32, hi: f32, v: f32, s: f32, e: f32) -> f32 {
+    // The corners whose faces lie half a voxel or more beyond the scene's ends: on the voxel
+    // lattice for a level that holds the scene (it stays put), on the step lattice otherwise.
+    let below = |step: f32| ((lo - 0.5 * v) / step).floor() * step;
+    let above = |step: f32| ((hi + 0.5 * v) / step).ceil() * step - e;
+    let (low, high) = (below(v), above(v));
+    if low >= high {
+        return (((lo + hi - e) * 0.5 / v).round() * v).clamp(high, low);
+    }
+    let (low, high) = (below(s), above(s));
+    follow.clamp(low.min(high), low.max(high))
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Clipmap {
     /// Voxels along each axis of every level (a power of two).
@@ -82,31 +108,24 @@ impl Clipmap {
         Ok(c)
     }
 
-    /// Moves every level to `centre`, each in whole voxels of its own size, and then (with the
-    /// scene's bounds) by whole voxels until it lies inside them or holds them.
+    /// Moves every level to `centre` in steps of its own (`step`), and then (with the scene's
+    /// bounds), along each axis, by steps until it lies inside the scene, or, where it is larger
+    /// than the scene, to a place that holds the scene, where it stays: a level holding all of
+    /// the scene along an axis gains nothing by following the camera along it.
     pub fn recentre(&mut self, centre: Vec3) {
         for k in 0..self.levels {
-            let v = self.voxel(k);
-            let half = self.extent(k) * 0.5;
-            let mut origin = ((centre - Vec3::splat(half)) / v).floor() * v;
-            if let Some((low, high)) = self.origin_range(k) {
-                origin = origin.clamp(low.min(high), low.max(high));
-            }
-            self.origins[k as usize] = origin;
+            let (v, s, e) = (self.voxel(k), self.step(k), self.extent(k));
+            let follow = ((centre - Vec3::splat(0.5 * e)) / s).floor() * s;
+            self.origins[k as usize] = match self.scene {
+                None => follow,
+                Some(b) => Vec3::from_array(std::array::from_fn(|a| place(follow[a], b.min[a], b.max[a], v, s, e))),
+            };
         }
     }
 
-    /// The corners (on level `k`'s lattice) between which the level wastes nothing beyond the
-    /// scene: `low`, the highest whose minimum face lies half a voxel or more below the scene's
-    /// minimum, and `high`, the lowest whose maximum face lies half a voxel or more above its
-    /// maximum. Where the level is smaller than the scene, corners from `low` to `high` keep it
-    /// inside; where larger, corners from `high` to `low` keep the scene in it.
-    fn origin_range(&self, k: u32) -> Option<(Vec3, Vec3)> {
-        let b = self.scene?;
-        let v = self.voxel(k);
-        let low = ((b.min - Vec3::splat(0.5 * v)) / v).floor() * v;
-        let high = ((b.max + Vec3::splat(0.5 * v)) / v).ceil() * v - Vec3::splat(self.extent(k));
-        Some((low, high))
+    /// How far level `k` moves at a time: 1/STEPS_PER_SIDE of its side, in whole voxels.
+    pub fn step(&self, k: u32) -> f32 {
+        self.voxel(k) * (self.res / STEPS_PER_SIDE).max(1) as f32
     }
 
     /// Which faces of level `k` lie beyond the scene, half a voxel of the level or more (its
@@ -285,11 +304,9 @@ mod tests {
                 for a in 0..3 {
                     let (lo, hi) = (box_k.min[a], box_k.max[a]);
                     if hi - lo < b.max[a] - b.min[a] {
-                        // Inside: no further out than its lattice needs.
-                        assert!(
-                            lo > b.min[a] - 1.5 * v - 1e-4 && hi < b.max[a] + 1.5 * v + 1e-4,
-                            "{eye} level {k} axis {a}"
-                        );
+                        // Inside: no further out than its steps need.
+                        let out = 0.5 * v + c.step(k) + 1e-4;
+                        assert!(lo > b.min[a] - out && hi < b.max[a] + out, "{eye} level {k} axis {a}");
                     } else {
                         // Holding the scene: both faces open.
                         assert!(open_lo[a] && open_hi[a], "{eye} level {k} axis {a}: {lo} {hi}");
@@ -307,21 +324,29 @@ mod tests {
         // placement), its finest level closed on every side.
         c.recentre(Vec3::new(0.0, 7.5, 0.0));
         let fine = c.level_grid(0).bounds();
-        assert!(((fine.min + fine.max) * 0.5 - Vec3::new(0.0, 7.5, 0.0)).abs().max_element() <= c.voxel(0));
+        assert!(((fine.min + fine.max) * 0.5 - Vec3::new(0.0, 7.5, 0.0)).abs().max_element() <= c.step(0));
         assert_eq!(c.open(0), (BVec3::FALSE, BVec3::FALSE));
     }
 
-    /// Inside the scene the levels still move in whole voxels of their own.
+    /// Inside the scene a level moves in whole steps of its own, 1/16 of its side (so its mips
+    /// group its voxels alike wherever it is); along an axis where it holds the scene it stays.
     #[test]
-    fn levels_in_the_scene_move_in_whole_voxels() {
+    fn levels_in_the_scene_move_in_whole_steps_or_stay() {
         let b = hall();
-        let mut c = Clipmap::around(Vec3::ZERO, 3.0, 16, 4, Some(&b)).unwrap();
+        let mut c = Clipmap::around(Vec3::ZERO, 6.0, 64, 4, Some(&b)).unwrap();
+        assert!((c.step(0) - 4.0 * c.voxel(0)).abs() < 1e-6);
         let before = c.origins;
         for eye in cameras() {
             c.recentre(eye);
             for k in 0..4 {
-                let moved = (c.origins[k as usize] - before[k as usize]) / c.voxel(k);
-                assert!((moved - moved.round()).abs().max_element() < 1e-3, "level {k} moved {moved}");
+                let moved = (c.origins[k as usize] - before[k as usize]) / c.step(k);
+                for a in 0..3 {
+                    if c.extent(k) > b.max[a] - b.min[a] + c.voxel(k) {
+                        assert_eq!(c.origins[k as usize][a], before[k as usize][a], "level {k} axis {a} moved");
+                    } else {
+                        assert!((moved[a] - moved[a].round()).abs() < 1e-3, "level {k} moved {moved}");
+                    }
+                }
             }
         }
     }
