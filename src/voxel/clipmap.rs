@@ -1,13 +1,13 @@
 //! Clipmap placement (Wicked Engine's VXGI; Freed 2018 §2.3.2): `levels` cubes of `res`³ voxels
-//! around a point (the camera), each twice the extent of the one inside it and snapped to its
-//! own voxel size, so that as the point moves each level shifts in whole voxels of its own and
-//! static geometry voxelizes the same way in every frame.
+//! around a point (the camera), each twice the extent of the one inside it and moving in steps
+//! of 1/16 of its side (`STEPS_PER_SIDE`, whole voxels of its own), so that static geometry
+//! voxelizes the same way in every frame and each level's mips group its voxels alike.
 //!
 //! Levels stay inside the scene. Centred on a camera near the scene's end, a level would spend
 //! up to half its voxels on empty space beyond it (measured on Sponza: docs/benchmarks.md,
-//! "Clipmaps"). So a level is moved, in whole voxels, until it lies inside the scene's bounds, or
-//! holds them where it is larger than they are; the coarsest holds the whole scene wherever the
-//! camera is, and is no larger than that. A face of a level that lies beyond the scene is *open*:
+//! "Clipmaps"). So a level is moved, by steps, until it lies inside the scene's bounds, or, along
+//! an axis where it is larger than they are, holds them and stays put; the coarsest holds the
+//! whole scene wherever the camera is, and is no larger than that. A face of a level that lies beyond the scene is *open*:
 //! no level holds anything beyond it, so a cone sample near it stays in that level instead of
 //! moving out to the next (common/frame.glsl, `clip_room`).
 //!
