@@ -276,7 +276,7 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
 // Where in level k a sample at grid point `g` of a cone `diameter` voxels of level 0 wide,
 // `height` voxels of level 0 above its surface's plane, reads: texture coordinates `pos` and mip
 // `level` (of level k's texels). Returns how far the filter's support lies inside the level's
-// box from its closed faces (voxels of level 0; negative: it reaches out; clip_room), and in
+// box from its closed faces (voxels of level 0; negative: it reaches out; clip_inside), and in
 // `reach` from all its faces; `half_texel` is the filter's half texel.
 float clip_place(vec3 g, float diameter, float height, int k, ConeParams p, out vec3 pos, out float level,
                  out float half_texel, out float reach) {
@@ -291,8 +291,8 @@ float clip_place(vec3 g, float diameter, float height, int k, ConeParams p, out 
     float h = 0.5 * exp2(max(ceil(level), 1.0));
     t.z = clamp(t.z, slab + h, slab + n - h);
     pos = t / frame.voxel_dims.xyz;
-    reach = clip_inside(g, k) - half_texel;
-    return clip_room(g, k) - half_texel;
+    reach = clip_inside(g, k, false) - half_texel;
+    return clip_inside(g, k, true) - half_texel;
 }
 
 // One sample of the volume at `pos` and `level`: below level 1 level 0 blended with level 1, as

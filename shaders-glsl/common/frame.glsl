@@ -62,28 +62,25 @@ int clip_count() {
     return int(frame.clip.x);
 }
 
-// How far grid point `g` lies inside level k's box (voxels of level 0; negative outside).
-float clip_inside(vec3 g, int k) {
-    vec4 l = frame.clip_levels[k];
-    vec3 lo = g - l.xyz, hi = l.xyz + l.w * frame.clip.y - g;
-    return min(min(min(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
-}
-
-// How far grid point `g` lies inside level k's box from its closed faces: an open face, half a
-// voxel of the level or more beyond the scene (voxel::clipmap::Clipmap::open), has nothing beyond
-// it in any level, so a sample near it stays in level k and does not blend into the next.
-float clip_room(vec3 g, int k) {
+// How far grid point `g` lies inside level k's box (voxels of level 0; negative outside), from
+// all its faces, or (`closed`) only from its closed ones: an open face, half a voxel of the level
+// or more beyond the scene (voxel::clipmap::Clipmap::open), has nothing beyond it in any level,
+// so a cone sample near it stays in level k and does not blend into the next.
+float clip_inside(vec3 g, int k, bool closed) {
     vec4 l = frame.clip_levels[k];
     vec3 top = l.xyz + l.w * frame.clip.y, slack = vec3(0.499 * l.w);
-    vec3 lo = mix(g - l.xyz, vec3(1e30), lessThanEqual(l.xyz, frame.clip_scene[0].xyz - slack));
-    vec3 hi = mix(top - g, vec3(1e30), greaterThanEqual(top, frame.clip_scene[1].xyz + slack));
+    vec3 lo = g - l.xyz, hi = top - g;
+    if (closed) {
+        lo = mix(lo, vec3(1e30), lessThanEqual(l.xyz, frame.clip_scene[0].xyz - slack));
+        hi = mix(hi, vec3(1e30), greaterThanEqual(top, frame.clip_scene[1].xyz + slack));
+    }
     return min(min(min(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
 }
 
 // The finest level whose box holds grid point `g` (the coarsest if none does).
 int clip_level_of(vec3 g) {
     int k = 0;
-    while (k + 1 < clip_count() && clip_inside(g, k) < 0.0) k++;
+    while (k + 1 < clip_count() && clip_inside(g, k, false) < 0.0) k++;
     return k;
 }
 

@@ -178,7 +178,8 @@ impl MeshBuffers {
     }
 
     /// [`Self::draw`], only the clusters that meet `within` when given (a voxelization into a
-    /// box: a triangle outside it writes no voxel of it). Consecutive clusters drawn are one draw.
+    /// box: a triangle outside it writes no voxel of it). Consecutive clusters drawn are one draw;
+    /// without a box, the draws as they are.
     pub fn draw_within(
         &self,
         cmd: vk::CommandBuffer,
@@ -187,8 +188,6 @@ impl MeshBuffers {
         within: Option<&crate::scene::Aabb>,
     ) {
         let d = &self.ctx.device;
-        let meets =
-            |c: &Cluster| within.is_none_or(|b| c.bounds.min.cmple(b.max).all() && c.bounds.max.cmpge(b.min).all());
         let mut material = None;
         let mut issue = |first: u32, count: u32, m: u32| unsafe {
             if material != Some(m) {
@@ -205,9 +204,15 @@ impl MeshBuffers {
             d.cmd_bind_vertex_buffers(cmd, 0, &[self.vertices.raw], &[0]);
             d.cmd_bind_index_buffer(cmd, self.indices.raw, 0, vk::IndexType::UINT32);
         }
+        let Some(within) = within else {
+            for draw in &self.draws {
+                issue(draw.first_index, draw.index_count, draw.material);
+            }
+            return;
+        };
         // Runs of consecutive clusters of one material that meet the box: one draw each.
         let mut run: Option<(u32, u32, u32)> = None;
-        for c in self.clusters.iter().filter(|c| meets(c)) {
+        for c in self.clusters.iter().filter(|c| c.bounds.overlaps(within)) {
             run = match run {
                 Some((first, count, m)) if m == c.material && first + count == c.first_index => {
                     Some((first, count + c.index_count, m))

@@ -51,6 +51,14 @@ impl Aabb {
     pub fn size(&self) -> Vec3 {
         self.max - self.min
     }
+    /// Whether the two boxes share a point (touching counts).
+    pub fn overlaps(&self, other: &Aabb) -> bool {
+        self.min.cmple(other.max).all() && self.max.cmpge(other.min).all()
+    }
+    /// This box grown by `pad` on every side.
+    pub fn grown(&self, pad: f32) -> Aabb {
+        Aabb { min: self.min - Vec3::splat(pad), max: self.max + Vec3::splat(pad) }
+    }
 }
 
 /// A contiguous index range drawn with one material.

@@ -9,7 +9,7 @@
 //! an axis where it is larger than they are, holds them and stays put; the coarsest holds the
 //! whole scene wherever the camera is, and is no larger than that. A face of a level that lies beyond the scene is *open*:
 //! no level holds anything beyond it, so a cone sample near it stays in that level instead of
-//! moving out to the next (common/frame.glsl, `clip_room`).
+//! moving out to the next (common/frame.glsl, `clip_inside`).
 //!
 //! The levels are stored stacked along z in one volume of `res × res × (levels · res)` texels
 //! (level k in texels `k·res .. (k+1)·res` of z): the radiance mip chain of such a stack keeps
@@ -130,7 +130,7 @@ impl Clipmap {
 
     /// Which faces of level `k` lie beyond the scene, half a voxel of the level or more (its
     /// minimum faces, its maximum faces): open faces, beyond which no level holds anything.
-    /// The shaders test the same (common/frame.glsl, `clip_room`).
+    /// The shaders test the same (common/frame.glsl, `clip_inside`).
     pub fn open(&self, k: u32) -> (BVec3, BVec3) {
         let Some(b) = self.scene else { return (BVec3::FALSE, BVec3::FALSE) };
         let (v, o) = (self.voxel(k), self.origins[k as usize]);

@@ -361,9 +361,7 @@ impl Voxelizer {
                     params.set_level(clip, k);
                     // Padded by a voxel of the level: a triangle on the box's face still writes.
                     let level = clip.level_grid(k);
-                    let b = level.bounds();
-                    let pad = glam::Vec3::splat(level.voxel);
-                    draw(Some(&crate::scene::Aabb { min: b.min - pad, max: b.max + pad }));
+                    draw(Some(&level.bounds().grown(level.voxel)));
                     // Earlier levels' writes before the next level's (the same textures, list
                     // and page table; a voxel of two levels is two texels, but the list's count
                     // and the pool's slots are shared).
