@@ -8,8 +8,9 @@
 #include "frame.glsl"
 
 // An includer that knows no light is an area light defines this false (a specialization
-// constant): inlined into injection's loop over the lights, the polygon's code, though never run
-// for a spot, kept its injection at 1.7-2x the time it took without (docs/benchmarks.md).
+// constant, scene::gpu::SceneGpu::area_lights): inlined into a loop over the lights, the
+// polygon's code, though never run for a spot, kept spot-lit injection at 1.7-2x the time it
+// took without, and the deferred shading of every pixel at 1.25x (docs/benchmarks.md).
 #ifndef VCT_AREA_LIGHTS
 #define VCT_AREA_LIGHTS true
 #endif

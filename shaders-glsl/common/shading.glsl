@@ -15,6 +15,11 @@
 #include "light.glsl"
 
 layout(constant_id = 0) const bool ANISOTROPIC = false;
+// An includer that knows no material reflects specularly defines this false (a specialization
+// constant, scene::gpu::SceneGpu::specular), and the specular cone's code is left out.
+#ifndef VCT_SPECULAR
+#define VCT_SPECULAR true
+#endif
 
 #include "gather.glsl"
 
@@ -110,7 +115,7 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
         // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
         diffuse = albedo * (1.0 - metallic) * gathered.rgb;
         vec3 f0 = specular_f0(m, albedo);
-        if (max(f0.r, max(f0.g, f0.b)) > 0.0) {
+        if (VCT_SPECULAR && max(f0.r, max(f0.g, f0.b)) > 0.0) {
             vec3 c = specular_given ? specular_in : specular_cone(m, uvw, n, v, p);
             specular = fresnel_schlick(f0, dot(n, v)) * c;
         }

@@ -28,6 +28,12 @@
 // still view kept changing by 0.6-1.0% a frame; and moving the kept trace by its traced
 // neighbours' change since their own traces, whose estimate differs with each frame's traced
 // pixels: it flickered 2.5-14% a frame.
+// Constants 7 and 8: whether any light is an area light (common/light.glsl), and whether any
+// material reflects specularly (common/shading.glsl; without, SPECULAR_REDUCED is off too).
+layout(constant_id = 7) const bool AREA_LIGHTS = true;
+layout(constant_id = 8) const bool SPECULAR_MATERIALS = true;
+#define VCT_AREA_LIGHTS AREA_LIGHTS
+#define VCT_SPECULAR SPECULAR_MATERIALS
 #include "frame.glsl"
 
 layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
@@ -251,6 +257,10 @@ void main() {
             gathered = upsampled_gather(px, world, n, own, spec);
         }
     }
-    bool spec_given = SPECULAR_REDUCED && given;
-    imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, given, gathered, spec_given, spec.rgb), 1.0));
+    // Whether the cones were traced elsewhere is known when the shader is specialized
+    // (shade_surface_given reads the gather only with GI on): as a runtime value, the cone code
+    // it stands for stayed in this pass, and lavapipe, which runs a branch for every lane
+    // whether or not one takes it, paid for a cone's first steps at every pixel.
+    const bool traced = GI_SCALE > 1u;
+    imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, traced, gathered, SPECULAR_REDUCED && traced, spec.rgb), 1.0));
 }

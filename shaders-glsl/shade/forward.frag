@@ -1,6 +1,12 @@
 #version 460
 // Forward shading (Freed 2018 §4.5, the thesis' choice): after the depth prepass, each visible
 // fragment applies its material's textures and runs `shade_surface` (common/shading.glsl).
+// Constants 3 and 4: whether any light is an area light (common/light.glsl), and whether any
+// material reflects specularly (common/shading.glsl).
+layout(constant_id = 3) const bool AREA_LIGHTS = true;
+layout(constant_id = 4) const bool SPECULAR_MATERIALS = true;
+#define VCT_AREA_LIGHTS AREA_LIGHTS
+#define VCT_SPECULAR SPECULAR_MATERIALS
 #include "frame.glsl"
 
 layout(set = 2, binding = 0) uniform sampler2DArrayShadow shadow_map;

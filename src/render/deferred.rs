@@ -169,7 +169,8 @@ impl DeferredShadePass {
         let low = |name: &str, (w, h)| {
             Image::new(ctx, name, ImageDesc::d2(vk::Format::R16G16B16A16_SFLOAT, w, h, vk::ImageUsageFlags::STORAGE))
         };
-        let reduced_specular = reduced_specular && gi_scale > 1;
+        // A scene whose materials reflect no specular light has no specular cone to trace.
+        let reduced_specular = reduced_specular && gi_scale > 1 && scene.specular;
         let diffuse_low = low("diffuse gather (reduced)", (lw, lh))?;
         let specular_low = low("specular cone (reduced)", if reduced_specular { (lw, lh) } else { (1, 1) })?;
         let (hw, hh) = if accumulate { (targets.width, targets.height) } else { (1, 1) };
@@ -214,7 +215,17 @@ impl DeferredShadePass {
         let [aniso, sparse, resident] = bricks.spec(anisotropic as u32);
         let layouts = [scene.set.layout, scene.material_sets.layout, set.layout];
         let pipeline = |name: &str, pass: u32| {
-            let spec = [aniso, sparse, resident, gi_scale, pass, accumulate as u32, reduced_specular as u32];
+            let spec = [
+                aniso,
+                sparse,
+                resident,
+                gi_scale,
+                pass,
+                accumulate as u32,
+                reduced_specular as u32,
+                scene.area_lights as u32,
+                scene.specular as u32,
+            ];
             Pipeline::compute(
                 ctx,
                 name,

@@ -52,8 +52,6 @@ pub fn injection_stride(texel: f32, voxel: f32, texels_per_voxel: f32) -> u32 {
 }
 
 impl InjectPass {
-    /// `area_lights`: whether any light is an area light (specialization constant).
-    #[allow(clippy::too_many_arguments)] // the passes it reads, its strides and two switches
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
@@ -62,7 +60,6 @@ impl InjectPass {
         radiance: &RadianceVolume,
         strides: Vec<Vec<Option<u32>>>,
         listed: bool,
-        area_lights: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -117,7 +114,7 @@ impl InjectPass {
             "inject",
             // Constant 3: whether any light is an area light (else its code is compiled out).
             Stage::new(c, shaders::GI_INJECT_COMP)
-                .spec(&[bricks.spec(0).as_slice(), &[area_lights as u32]].concat())
+                .spec(&[bricks.spec(0).as_slice(), &[scene.area_lights as u32]].concat())
                 .grid(voxels.grid.spec()),
             &[scene.set.layout, inject_set.layout],
             16,

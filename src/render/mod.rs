@@ -355,8 +355,7 @@ impl Renderer {
                     .collect()
             })
             .collect();
-        let area = scene.lights.iter().any(crate::scene::Light::is_mesh_emitter);
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed, area)?;
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none() && options.clipmap.is_none();
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed, fixed)?;

@@ -50,12 +50,15 @@ impl ShadePass {
         set.write_sampled(0, shadow.map.view.raw, shadow_sampler.raw);
         radiance.write_to(&set, 1);
         set.write_buffer(5, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
-        let aniso = bricks.spec(anisotropic as u32);
+        // Constants 3 and 4: whether any light is an area light (common/light.glsl), and whether
+        // any material reflects specularly (common/shading.glsl).
+        let spec =
+            [bricks.spec(anisotropic as u32).as_slice(), &[scene.area_lights as u32, scene.specular as u32]].concat();
         let mut desc = GraphicsDesc::new(
             "shade",
             vec![
                 Stage::new(vk::ShaderStageFlags::VERTEX, shaders::SCENE_SCENE_VERT).spec(&[0]),
-                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG).spec(&aniso).grid(grid),
+                Stage::new(vk::ShaderStageFlags::FRAGMENT, shaders::SHADE_FORWARD_FRAG).spec(&spec).grid(grid),
             ],
         );
         desc.set_layouts = vec![scene.set.layout, scene.material_sets.layout, set.layout];

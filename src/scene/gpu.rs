@@ -260,6 +260,15 @@ pub struct SceneGpu {
     pub cones: Buffer,
     pub cone_count: u32,
     pub bounce_cone_count: u32,
+    /// Whether any light is an area light: the shaders that light points are specialized on it
+    /// (common/light.glsl, VCT_AREA_LIGHTS), since on lavapipe the polygon's code, run for
+    /// every lane whether or not one is an area light, cost spot-lit injection 1.7-2x and the
+    /// deferred shading of every pixel a fifth (docs/benchmarks.md).
+    pub area_lights: bool,
+    /// Whether any material reflects specularly (its F0 above zero: a specular colour, or a
+    /// metal): without one, the specular cone's code and images are left out of the shading
+    /// (common/shading.glsl, VCT_SPECULAR).
+    pub specular: bool,
     _materials: Buffer,
     _textures: Vec<Image>,
     _sampler: Sampler,
@@ -372,6 +381,8 @@ impl SceneGpu {
             cones,
             cone_count,
             bounce_cone_count,
+            area_lights: scene.lights.iter().any(crate::scene::Light::is_mesh_emitter),
+            specular: scene.materials.iter().any(|m| m.specular.max_element() > 0.0 || m.metallic > 0.0),
             _materials: materials,
             _textures: textures,
             _sampler: sampler,
