@@ -78,15 +78,19 @@ fn reduced_resolution_diffuse_light_matches_full_resolution_and_keeps_silhouette
 }
 
 #[test]
-fn gi_scale_needs_deferred_tracing_and_takes_one_two_or_four() {
+fn gi_scale_needs_deferred_tracing_and_takes_one_two_four_or_eight() {
     let ctx = common::context();
     let scene = Scene::embedded_default().unwrap();
     let forward = RenderOptions { gi_scale: 2, tracing: vct::render::Tracing::Forward, ..Default::default() };
     let e = Renderer::new(&ctx, scene.clone(), forward).err().expect("forward tracing at gi-scale 2");
     assert!(e.to_string().contains("gi-scale"), "{e}");
-    let three = RenderOptions { gi_scale: 3, ..Default::default() };
-    let e = Renderer::new(&ctx, scene, three).err().expect("gi-scale 3");
-    assert!(e.to_string().contains("gi-scale"), "{e}");
+    for refused in [3, 16] {
+        let o = RenderOptions { gi_scale: refused, ..Default::default() };
+        let e = Renderer::new(&ctx, scene.clone(), o).err().unwrap_or_else(|| panic!("gi-scale {refused}"));
+        assert!(e.to_string().contains("gi-scale"), "{e}");
+    }
+    let eight = RenderOptions { gi_scale: 8, gi_accumulate: true, ..Default::default() };
+    Renderer::new(&ctx, scene, eight).expect("gi-scale 8, accumulated");
 }
 
 /// The specular cone traced with the diffuse cones (`reduced_specular`, the default at a GI

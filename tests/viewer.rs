@@ -55,7 +55,8 @@ fn difference(a: &Path, b: &Path) -> (f64, f64) {
 fn viewer_matches_headless(name: &str, env: &[(&str, &str)], extra: &[&str]) {
     let (shot, headless) = (out(&format!("{name}-shot.png")), out(&format!("{name}-headless.png")));
     let common = [&["--res", "32", "--voxelizer", "raster", "--validation"][..], extra].concat();
-    let view = [&["view", "--frames", "30", "--screenshot", shot.to_str().unwrap()][..], &common].concat();
+    // The viewer's accumulation has traced every pixel once after gi-scale² (64) frames.
+    let view = [&["view", "--frames", "72", "--screenshot", shot.to_str().unwrap()][..], &common].concat();
     run_with(&view, true, env);
     run(&[&["render", "--out", headless.to_str().unwrap()][..], &common].concat(), false);
     let (mean, over) = difference(&shot, &headless);

@@ -1,5 +1,5 @@
 //! Reduced-resolution indirect light on the bench (`--gi-scale`): the default configuration at
-//! the first resolution with the diffuse cones traced at one pixel in 4 and 16, with and
+//! the first resolution with the diffuse cones traced at one pixel in 4, 16 and 64, with and
 //! without accumulation over frames (`--gi-accumulate`; measured on a still camera after
 //! gi-scale² frames, when it has converged), beside every pixel (the main sweep's row),
 //! charted as frame time against image FLIP per scene.
@@ -13,7 +13,7 @@ use super::{charts, Results, Row};
 use crate::error::Result;
 
 /// The scales `vct bench` runs beside 1 (every pixel).
-pub const SCALES: [u32; 2] = [2, 4];
+pub const SCALES: [u32; 3] = [2, 4, 8];
 
 /// One reduced-resolution configuration.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -59,7 +59,7 @@ pub fn chart(r: &Results) -> Regime {
         .collect();
     Regime {
         name: "gi_scale".into(),
-        title: "Diffuse cones at one pixel in 1 / 4 / 16: frame time against FLIP".into(),
+        title: "Diffuse cones at one pixel in 1 / 4 / 16 / 64: frame time against FLIP".into(),
         x: "frame GPU ms".into(),
         y: "image FLIP against the path-traced reference".into(),
         log_x: false,

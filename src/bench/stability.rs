@@ -438,6 +438,7 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
         ("turning light, temporal 0.2", Motion::Light, 0.2, full, even),
         ("turning light, GI scale 2 accumulated", Motion::Light, 1.0, (2, true), even),
         ("turning light, GI scale 4 accumulated", Motion::Light, 1.0, (4, true), even),
+        ("turning light, GI scale 8 accumulated", Motion::Light, 1.0, (8, true), even),
         ("orbiting camera", Motion::Camera, 1.0, full, even),
         ("orbiting camera, warped", Motion::Camera, 1.0, full, warp),
         ("orbiting camera, perspective warp", Motion::Camera, 1.0, full, perspective),
@@ -446,6 +447,7 @@ pub fn temporal_flicker(ctx: &Arc<Context>, frames: u32) -> Result<Regime> {
         ("orbiting camera, GI scale 2 accumulated", Motion::Camera, 1.0, (2, true), even),
         ("orbiting camera, GI scale 4", Motion::Camera, 1.0, (4, false), even),
         ("orbiting camera, GI scale 4 accumulated", Motion::Camera, 1.0, (4, true), even),
+        ("orbiting camera, GI scale 8 accumulated", Motion::Camera, 1.0, (8, true), even),
     ];
     let series: Vec<Series> = configs
         .iter()

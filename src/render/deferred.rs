@@ -90,7 +90,7 @@ pub struct DeferredShadePass {
 
 impl DeferredShadePass {
     /// `anisotropic`: cones sample the six directional chains (specialization constant);
-    /// `gi_scale`: the diffuse cones run at one pixel in `gi_scale`² (1, 2 or 4); `accumulate`:
+    /// `gi_scale`: the diffuse cones run at one pixel in `gi_scale`² (1, 2, 4 or 8); `accumulate`:
     /// screen-space accumulation of them over frames (with `gi_scale` > 1); `reduced_specular`:
     /// the specular cone runs with them (else at every pixel).
     #[allow(clippy::too_many_arguments)] // the passes it reads, and four switches
@@ -107,13 +107,13 @@ impl DeferredShadePass {
         reduced_specular: bool,
         grid: crate::gpu::GridSpec,
     ) -> Result<Self> {
-        if !matches!(gi_scale, 1 | 2 | 4) {
-            return Err(crate::Error::param("gi-scale", format!("must be 1, 2 or 4, got {gi_scale}")));
+        if !matches!(gi_scale, 1 | 2 | 4 | 8) {
+            return Err(crate::Error::param("gi-scale", format!("must be 1, 2, 4 or 8, got {gi_scale}")));
         }
         if accumulate && gi_scale == 1 {
             return Err(crate::Error::param(
                 "gi-accumulate",
-                "needs --gi-scale 2 or 4: at full resolution every pixel is traced every frame",
+                "needs --gi-scale 2, 4 or 8: at full resolution every pixel is traced every frame",
             ));
         }
         let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::STORAGE;
@@ -364,7 +364,7 @@ mod tests {
 
     #[test]
     fn the_jitter_visits_every_pixel_of_a_block_once_a_cycle_and_far_from_the_last() {
-        for scale in [2u32, 4] {
+        for scale in [2u32, 4, 8] {
             let cycle: Vec<[u32; 2]> = (0..(scale * scale) as u64).map(|f| jitter(scale, f)).collect();
             let mut seen = cycle.clone();
             seen.sort();

@@ -172,7 +172,7 @@ pub struct RenderOptions {
     pub storage: Storage,
     /// Slots of the sparse brick pool; `None`: as many as a census counts.
     pub bricks: Option<u32>,
-    /// The diffuse cones run at one pixel in `gi_scale`² (1, 2 or 4), upsampled edge-aware
+    /// The diffuse cones run at one pixel in `gi_scale`² (1, 2, 4 or 8), upsampled edge-aware
     /// (deferred tracing only).
     pub gi_scale: u32,
     /// Accumulate the reduced-resolution diffuse cones over frames in screen space (the traced

@@ -36,8 +36,8 @@ vct viewer keys:
   C              cycle views: full, direct, indirect, diffuse, specular, ao, voxels, texels, radiance:0..3
   + / -          voxel resolution up / down (16..512)
   G              global illumination on / off
-  R              diffuse cones at one pixel in 1 / 4 / 16 (GI scale 1, 2, 4)
-  P              accumulate those cones over frames on / off (GI scale 2, 4)
+  R              diffuse cones at one pixel in 1 / 4 / 16 / 64 (GI scale 1, 2, 4, 8)
+  P              accumulate those cones over frames on / off (GI scale 2, 4, 8)
   T              temporal filtering on / off
   I              on-screen overlay on / off (never in screenshots)
   F12            screenshot (vct-screenshot-N.png)
@@ -390,6 +390,7 @@ impl App {
                 options.gi_scale = match options.gi_scale {
                     1 => 2,
                     2 => 4,
+                    4 => 8,
                     _ => 1,
                 };
                 // At full resolution every pixel is traced every frame: nothing to accumulate.
@@ -398,7 +399,7 @@ impl App {
                 Self::rebuild(r, options)?;
             }
             KeyCode::KeyP if options.gi_scale == 1 => {
-                println!("GI accumulation: needs a GI scale of 2 or 4 (R)");
+                println!("GI accumulation: needs a GI scale of 2, 4 or 8 (R)");
             }
             KeyCode::KeyP => {
                 options.gi_accumulate = !options.gi_accumulate;

@@ -185,19 +185,19 @@ pub struct SceneArgs {
     /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
-    /// Trace the diffuse cones at one pixel in 1, 4 or 16 (1|2|4), upsampled edge-aware on the
+    /// Trace the diffuse cones at one pixel in 1, 4, 16 or 64 (1|2|4|8), upsampled edge-aware on the
     /// G-buffer's depth and normal (deferred tracing; the specular cone too, see --gi-specular).
-    /// Default: 1 for `render` (a headless frame affords every pixel), 4 for `view`.
+    /// Default: 1 for `render` (a headless frame affords every pixel), 8 for `view`.
     #[arg(long)]
     pub gi_scale: Option<u32>,
     /// Accumulate those reduced-resolution cones over frames in screen space: the traced pixel
     /// moves through each block, the history follows the camera and is rejected where the
     /// surface changed; a still view becomes full-resolution tracing after gi-scale² frames
-    /// (needs --gi-scale 2 or 4). Default: off for `render` (one frame has no history; give
+    /// (needs --gi-scale 2, 4 or 8). Default: off for `render` (one frame has no history; give
     /// --frames), on for `view`.
     #[arg(long, value_enum)]
     pub gi_accumulate: Option<OnOff>,
-    /// With --gi-scale 2 or 4: trace the specular cone with the diffuse cones, upsampled and
+    /// With --gi-scale 2, 4 or 8: trace the specular cone with the diffuse cones, upsampled and
     /// accumulated alike (reduced), or at every pixel (full).
     #[arg(long, value_enum, default_value = "reduced")]
     pub gi_specular: SpecularArg,

@@ -261,9 +261,10 @@ fn view(args: ViewArgs) -> Result<()> {
         scene,
         render: RenderOptions {
             // The viewer's defaults, from the frame time against FLIP chart (docs/benchmarks.md,
-            // "Diffuse cones at a reduced resolution"): a tenth of the shading time of full
-            // resolution at 1280x720, and a still view converges to full resolution.
-            gi_scale: args.scene.gi_scale.unwrap_or(4),
+            // "Diffuse cones at a reduced resolution"): one pixel in 64 traces, so the cones cost
+            // a third of the still frame at 1280x720 on lavapipe (scale 4: two thirds); a still
+            // view converges to full resolution, and a moving one stays within 1.7% of it.
+            gi_scale: args.scene.gi_scale.unwrap_or(8),
             gi_accumulate: args.scene.gi_accumulate.map_or(args.scene.gi_scale != Some(1), |a| a == OnOff::On),
             // A static scene's volume is built again only when the lights, grid or GI change.
             reuse_volume: true,
