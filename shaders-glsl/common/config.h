@@ -4,7 +4,8 @@
 #ifndef VCT_CONFIG_H
 #define VCT_CONFIG_H
 
-// Compute workgroup sizes (local_size_x; 3D kernels use N x N x N).
+// Compute workgroup sizes (local_size_x; 3D kernels use N x N x N). WORKGROUP_2D a multiple of 4
+// (shade/deferred.comp walks its workgroups in tiles of 4 x 2).
 #define WORKGROUP_1D 64
 #define WORKGROUP_2D 8
 #define WORKGROUP_3D 4

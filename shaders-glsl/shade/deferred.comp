@@ -189,8 +189,23 @@ bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h, out vec4 hs) {
     return total > 0.0;
 }
 
+// The pixel of this invocation: the workgroup in tiles of 4 x 2, so that eight consecutive
+// invocations (a SIMD group on lavapipe's 256-bit vectors) cover a compact patch, whose cones end
+// after more nearly the same number of steps than those of a row of eight. Measured (lavapipe):
+// the reduced trace at scale 8 (Cornell, 1280x720, 64^3) took 84-87 ms against 93-99 along rows,
+// and full-resolution shading (Cornell 256^2, 128^3) 803-813 against 848-856 ms; the images of
+// the two orders differ no more than two runs of either do (the voxelizer's atomic averages
+// follow the order threads land: FLIP up to 0.001). On a GPU a warp of 32 covers 8 x 4 pixels
+// either way.
+ivec2 invocation_pixel() {
+    const uint tiles_x = WORKGROUP_2D / 4;
+    uint i = gl_LocalInvocationIndex, lane = i & 7u, tile = i >> 3u;
+    uvec2 at = uvec2((tile % tiles_x) * 4u + (lane & 3u), (tile / tiles_x) * 2u + (lane >> 2u));
+    return ivec2(gl_WorkGroupID.xy * WORKGROUP_2D + at);
+}
+
 void main() {
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 px = invocation_pixel();
     if (PASS == PASS_TRACE) {
         if (any(greaterThanEqual(px, imageSize(diffuse_low)))) return;
         vec3 world, n;
