@@ -18,7 +18,8 @@
 // last trace it got,
 // reprojected with the previous frame's camera and rejected where the surface found there is
 // not this pixel's (its normal and tangent plane: disocclusion); a pixel that keeps none shows
-// the upsampled light. On a still camera every pixel is traced once in s² frames, and the
+// the upsampled light, averaged over the frames until its own trace comes (an estimate,
+// SURFACE_ESTIMATE). On a still camera every pixel is traced once in s² frames, and the
 // image is then full-resolution tracing exactly. Light that changes is shown up to s² frames
 // late. Measured (96², 32³, Cornell, after s² frames): under a camera orbiting 0.5° a frame the
 // indirect light is within 1.3% / 3.3% of full-resolution tracing at scale 2 / 4 (upsampling
@@ -137,13 +138,22 @@ vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec)
     return total > 0.0 ? sum / total : nearest;
 }
 
-// A unit normal in 30 bits (octahedral, 15 bits an axis) with bit 31 set: the history keeps a
-// trace of this surface (zero: none; background, GI off, or only the upsampled light).
+// What a history pixel holds, beside its surface's packed normal (zero: nothing; background or
+// GI off): a trace of its own, or, until it gets one, an estimate: the upsampled light averaged
+// over the frames, whose traced pixels move through the block.
+const uint SURFACE_TRACE = 0x80000000u;
+const uint SURFACE_ESTIMATE = 0x40000000u;
+// The weight of this frame's upsampled light in an estimate. Without the average, a pixel not yet
+// traced showed each frame's upsampling from other traced pixels: at scale 8 the first 64
+// frames after a cut flickered and dotted edges (docs/benchmarks.md).
+const float ESTIMATE_WEIGHT = 0.25;
+
+// A unit normal in 30 bits (octahedral, 15 bits an axis); bits 30 and 31 are left for the flags.
 uint pack_surface_normal(vec3 n) {
     n /= abs(n.x) + abs(n.y) + abs(n.z);
     vec2 p = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
     uvec2 q = uvec2(round(clamp(p * 0.5 + 0.5, 0.0, 1.0) * 32767.0));
-    return q.x | (q.y << 15) | 0x80000000u;
+    return q.x | (q.y << 15);
 }
 
 vec3 unpack_surface_normal(uint w) {
@@ -156,37 +166,45 @@ vec3 unpack_surface_normal(uint w) {
 
 // The trace pixel `px` (at `world`, normal `n`) kept in the previous frame: bilinear over the
 // four pixels around where the point was, of which only those that keep a trace of this
-// surface count (their normal and tangent plane, as the upsampling tests them); false where the
-// point was off screen or no pixel there keeps one (disocclusion). The point moves by the
+// surface count (their normal and tangent plane, as the upsampling tests them), or where none
+// does, those that keep an estimate (`estimate` true); false where the point was off screen or
+// no pixel there keeps either (disocclusion). The point moves by the
 // difference of its two projections, whose rounding cancels when the camera stood still.
 // Measured and dropped: nearest-pixel reprojection (after a 35-degree turn the kept history was
 // worse than none, 1.5% against 1.2%), and projecting the rebuilt position alone (a few
 // hundredths of a pixel off, so resampling it every frame blurred a still view by 0.15%).
-bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h, out vec4 hs) {
+bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h, out vec4 hs, out bool estimate) {
     vec4 clip = frame.previous_view_proj * vec4(world, 1.0);
     vec4 now = frame.view_proj * vec4(world, 1.0);
     if (clip.w <= 0.0) return false;
     vec2 f = vec2(px) + (clip.xy / clip.w - now.xy / now.w) * 0.5 * frame.viewport.xy;
     ivec2 base = ivec2(floor(f));
     vec2 t = f - vec2(base);
-    vec4 sum = vec4(0.0), spec_sum = vec4(0.0);
-    float total = 0.0;
+    vec4 sum = vec4(0.0), spec_sum = vec4(0.0), guess = vec4(0.0);
+    float total = 0.0, guessed = 0.0;
     for (int i = 0; i < 4; i++) {
         ivec2 o = ivec2(i & 1, i >> 1);
         ivec2 p = base + o;
         float w = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
         if (w <= 0.0 || any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) continue;
         uvec4 s = imageLoad(surface_in, p);
-        if ((s.w & 0x80000000u) == 0u) continue;
+        if ((s.w & (SURFACE_TRACE | SURFACE_ESTIMATE)) == 0u) continue;
         vec3 wp = uintBitsToFloat(s.xyz);
         if (dot(unpack_surface_normal(s.w), n) < 0.9 || abs(dot(wp - world, n)) > 0.5 * frame.voxel_origin.w) continue;
-        sum += w * imageLoad(history_in, p);
-        if (SPECULAR_REDUCED) spec_sum += w * imageLoad(specular_history_in, p);
-        total += w;
+        vec4 g = imageLoad(history_in, p);
+        if ((s.w & SURFACE_TRACE) != 0u) {
+            sum += w * g;
+            if (SPECULAR_REDUCED) spec_sum += w * imageLoad(specular_history_in, p);
+            total += w;
+        } else {
+            guess += w * g;
+            guessed += w;
+        }
     }
-    h = sum / max(total, 1e-30);
+    estimate = total <= 0.0;
+    h = estimate ? guess / max(guessed, 1e-30) : sum / total;
     hs = spec_sum / max(total, 1e-30);
-    return total > 0.0;
+    return total > 0.0 || guessed > 0.0;
 }
 
 // The pixel of this invocation: the workgroup in tiles of 4 x 2, so that eight consecutive
@@ -236,24 +254,32 @@ void main() {
         // This frame's gather (the traced pixel's own, the kept trace, or upsampled) into
         // `history_out`, which the shading pass then reads.
         vec4 gathered = vec4(0.0), spec = vec4(0.0);
-        bool kept = false;
+        uint holds = 0u;
         if (found && given) {
-            gathered = upsampled_gather(px, world, n, kept, spec);
+            bool own;
+            gathered = upsampled_gather(px, world, n, own, spec);
+            holds = own ? SURFACE_TRACE : SURFACE_ESTIMATE;
             vec4 h, hs;
-            if (!kept && frame.gi_jitter.z > 0.5 && history_at(px, world, n, h, hs)) {
-                gathered = h;
-                // The specular cone looks along the reflected view: a trace from another camera
-                // position is of another direction. While the camera moves, this frame's
-                // upsampled traces stand in (on Sponza orbiting 0.5 degrees a frame, the kept
-                // traces were 12.7% off full resolution's indirect light; docs/benchmarks.md).
-                if (frame.gi_jitter.w < 0.5) spec = hs;
-                kept = true;
+            bool estimate;
+            if (!own && frame.gi_jitter.z > 0.5 && history_at(px, world, n, h, hs, estimate)) {
+                if (estimate) {
+                    gathered = mix(h, gathered, ESTIMATE_WEIGHT);
+                } else {
+                    gathered = h;
+                    // The specular cone looks along the reflected view: a trace from another
+                    // camera position is of another direction. While the camera moves, this
+                    // frame's upsampled traces stand in (on Sponza orbiting 0.5 degrees a frame,
+                    // the kept traces were 12.7% off full resolution's indirect light;
+                    // docs/benchmarks.md).
+                    if (frame.gi_jitter.w < 0.5) spec = hs;
+                    holds = SURFACE_TRACE;
+                }
             }
         }
         imageStore(history_out, px, gathered);
         if (SPECULAR_REDUCED) imageStore(specular_history_out, px, spec);
-        uvec4 surface = uvec4(floatBitsToUint(world), pack_surface_normal(n));
-        imageStore(surface_out, px, kept ? surface : uvec4(0u));
+        uvec4 surface = uvec4(floatBitsToUint(world), pack_surface_normal(n) | holds);
+        imageStore(surface_out, px, holds != 0u ? surface : uvec4(0u));
         return;
     }
     if (!found) {
