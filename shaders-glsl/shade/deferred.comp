@@ -251,8 +251,8 @@ void main() {
     bool found = surface_at(px, world, n);
     bool given = GI_SCALE > 1u && frame.view.z > 0.5;
     if (PASS == PASS_ACCUMULATE) {
-        // This frame's gather (the traced pixel's own, the kept trace, or upsampled) into
-        // `history_out`, which the shading pass then reads.
+        // This frame's gather (the traced pixel's own, the kept trace, or the upsampled light,
+        // averaged with the kept estimate) into `history_out`, which the shading pass then reads.
         vec4 gathered = vec4(0.0), spec = vec4(0.0);
         uint holds = 0u;
         if (found && given) {
