@@ -38,12 +38,6 @@
 #define POINTS_PER_TRIANGLE 8
 // Floats per scene vertex (scene::Vertex: position, normal, UV, tangent), read as storage.
 #define VERTEX_FLOATS 12
-// Injection's phases (render::inject): one light (INJECT_ONE), or several: each light's texels
-// mark the voxels they find (INJECT_MARK), then write the light of every light that found each
-// voxel (INJECT_GATHER).
-#define INJECT_ONE 0
-#define INJECT_MARK 1
-#define INJECT_GATHER 2
 // Injection reads this many shadow-map texels per voxel width at the farthest lit point (every
 // k-th texel of a finer map), so its cost follows the grid, not the map (render::inject).
 // Measured (docs/benchmarks.md, "Injection cost"): voxels of walls the light grazes are hit by

@@ -1,49 +1,29 @@
 #version 460
-// Radiance injection (Freed 2018 §4.3, Algorithm 2): one thread per (strided) shadow-map texel
-// reconstructs the lit point from its depth, finds its voxel and writes the light that voxel
-// reflects: albedo/pi * E * |n.l| (Lambert, n the voxel's averaged normal), plus emission.
-// The value is computed at the voxel centre, so every texel that hits a voxel writes the same
-// value: the result does not depend on which write lands last. It also records the lit side:
-// the voxel normal turned towards the light, which the anisotropic filter uses to keep a lit
-// face dark when seen from behind (a Lambertian face reflects into its own hemisphere only),
-// and around which the voxel-space bounce gathers.
-// With several lights each voxel must get the sum of what each light alone gives it, so which
-// voxels a light lights must not depend on the others. The pass then runs twice over every
-// light's texels: INJECT_MARK sets, for each voxel a light's texels find, that light's bit in
-// the voxel's lit_side word (bits 24..31, an atomic or); INJECT_GATHER then writes, at each
-// found voxel, the light of every light whose bit is set, the same value whichever texel lands
-// last (the bits no longer change), its lit side facing the light that gives the most. One light
-// needs no marks (INJECT_ONE): its texels are what finds its voxels.
+// Radiance injection, step 1 of 2 (Freed 2018 §4.3, Algorithm 2): one thread per (strided)
+// shadow-map texel reconstructs the lit point from its depth, finds its voxel and marks it lit
+// by this light: the light's bit in the voxel's lit_side word (bits 24..31, an atomic or).
+// Step 2 (gi/resolve.comp) then runs once per occupied voxel and writes the light of every light
+// whose bit is set. The value depends on the voxel and its bits alone (it is computed at the
+// voxel centre), so which voxels a light lights does not depend on the other lights, and the
+// result not on the order texels land. Measured (lavapipe, 64³, the images unchanged): the
+// Cornell spot's injection (its 2048² map's 4.2M texels) took 202-206 ms lighting at every
+// texel, as Algorithm 2 does, and 148-150 ms marking; with a point light added, which needed a
+// second pass over every texel to gather the marked lights' light, 699-702 against 261-263 ms.
+// Hoisting the per-texel matrix inverse to the host saved 4 ms more, not worth its uniforms.
 #define VCT_OWN_PUSH
 #include "frame.glsl"
-// Whether any of the scene's lights is an area light (render::inject); without one the polygon's
-// code is compiled out of the light loop below (common/light.glsl).
-layout(constant_id = 3) const bool AREA_LIGHTS = true;
-#define VCT_AREA_LIGHTS AREA_LIGHTS
-#include "light.glsl"
-#include "rgb9e5.glsl"
-#include "lit_side.glsl"
 
 layout(local_size_x = WORKGROUP_2D, local_size_y = WORKGROUP_2D) in;
 // One layer, or a point or area light's six cube faces (one dispatch a layer: push.layer).
 layout(set = 1, binding = 0) uniform sampler2DArray shadow_depth;
 layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_albedo;
-layout(set = 1, binding = 2, r32ui) uniform readonly uimage3D voxel_normal;
-layout(set = 1, binding = 3, r32ui) uniform readonly uimage3D voxel_emission;
-layout(set = 1, binding = 4, rgba16f) uniform writeonly image3D target;
-layout(set = 1, binding = 5, r32ui) uniform uimage3D lit_side;
+layout(set = 1, binding = 2, r32ui) uniform uimage3D lit_side;
 #define BRICKS_SET 1
-#define BRICKS_BINDING 6
+#define BRICKS_BINDING 3
 #include "bricks.glsl"
 // One thread per `stride` x `stride` block of texels, reading its centre texel (render::inject:
 // the stride keeps INJECT_TEXELS_PER_VOXEL texels per voxel where the map has more).
-layout(push_constant) uniform Push { uint stride; uint light; uint phase; uint layer; } push;
-
-const float PI = 3.14159265358979;
-
-vec4 unpack(uint p) {
-    return vec4(float(p & 0xffu), float((p >> 8) & 0xffu), float((p >> 16) & 0xffu), float(p >> 24)) / 255.0;
-}
+layout(push_constant) uniform Push { uint stride; uint light; uint layer; } push;
 
 // Grid point `g` in texels of level k (k = 0: the grid).
 vec3 level_texel(vec3 g, int k) {
@@ -84,10 +64,10 @@ void main() {
     for (int k = 0; k < (clip_on() ? clip_count() : 1); k++) inject_level(p, l_dir, j, k);
 }
 
-// Lights the voxel of lit point `p` in level `level` (0: the grid).
+// Marks the voxel of lit point `p` in level `level` (0: the grid) lit by light `j`.
 void inject_level(vec3 p, vec3 l_dir, int j, int level) {
     float scale = clip_on() ? frame.clip_levels[level].w : 1.0;
-    ivec3 v = ivec3(-1), t = ivec3(0);  // the voxel, and where it is stored
+    ivec3 t = ivec3(0);  // where the voxel is stored
     uint a = 0u;
     // In voxel units, from a quarter voxel before the point, one voxel at a time: a step no
     // longer than a voxel cannot jump over a wall's voxel layer. Mostly two loads: the surface's
@@ -102,7 +82,6 @@ void inject_level(vec3 p, vec3 l_dir, int j, int level) {
         ivec3 at = stored_at(u);
         uint b = imageLoad(voxel_albedo, at).r;
         if ((b >> 24) != 0u) {
-            v = u;
             t = at;
             a = b;
         } else if ((a >> 24) != 0u) {
@@ -110,44 +89,11 @@ void inject_level(vec3 p, vec3 l_dir, int j, int level) {
         }
     }
     if ((a >> 24) == 0u) {
-        v = ivec3(floor(level_texel(world_to_grid(p) + l_dir * 0.25 * scale, level)));
+        ivec3 v = ivec3(floor(level_texel(world_to_grid(p) + l_dir * 0.25 * scale, level)));
         if (!in_level(v, level)) return;
         t = stored_at(v);
         a = imageLoad(voxel_albedo, t).r;
         if ((a >> 24) == 0u) return;
     }
-    if (push.phase == INJECT_MARK) {
-        imageAtomicOr(lit_side, t, 1u << (24 + j));
-        return;
-    }
-    uint lights = push.phase == INJECT_ONE ? 1u << j : imageLoad(lit_side, t).r >> 24;
-    vec3 centre = texel_centre_world(v);
-    vec3 normal = unpack(imageLoad(voxel_normal, t).r).xyz * 2.0 - 1.0;
-    vec3 albedo = unpack(a).rgb;
-    bool oriented = length(normal) > 1e-3;
-    vec3 reflected = vec3(0.0), brightest = vec3(0.0);
-    float most = -1.0;
-    for (int k = 0; k < light_count(); k++) {
-        if ((lights & (1u << k)) == 0u) continue;
-        vec3 l;
-        // The voxel's normal has no sign: the side facing the light's position (an area light
-        // clips its polygon to that side's horizon).
-        vec3 n = oriented ? normalize(normal) : vec3(0.0);
-        if (dot(n, frame.lights[k].position.xyz - centre) < 0.0) n = -n;
-        vec3 irradiance = light_incident(k, centre, n, l);
-        float cos_theta = oriented ? abs(dot(n, l)) : 1.0;
-        vec3 r = albedo / PI * irradiance * cos_theta;
-        reflected += r;
-        float lum = dot(r, vec3(1.0));
-        if (lum > most) {
-            most = lum;
-            brightest = l;
-        }
-    }
-    vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, t).r);
-    imageStore(target, t, vec4(emission + reflected, 1.0));
-    // The lights' bits stay (every gathering texel reads them); a voxel with no normal keeps
-    // none of a side (lit_side.glsl).
-    vec3 side = oriented ? normalize(normal) * (dot(normal, brightest) < 0.0 ? -1.0 : 1.0) : vec3(-1.0);
-    imageStore(lit_side, t, uvec4(pack_lit_side(side, lights)));
+    imageAtomicOr(lit_side, t, 1u << (24 + j));
 }

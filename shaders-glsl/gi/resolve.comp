@@ -1,31 +1,83 @@
 #version 460
-// Radiance injection, step 1 (Freed 2018 §4.3, the "transfer" of occlusion): starts the
-// injection target with each voxel's emitted radiance and opacity 1 for every occupied voxel, 0
-// elsewhere: one invocation per voxel the voxelizers listed (the target cleared first), or per
-// voxel of the grid. Direct light is added by inject.comp.
-#include "config.h"
+// Radiance injection, step 2 of 2 (Freed 2018 §4.3: the "transfer" of occlusion, and the light
+// of Algorithm 2): one invocation per voxel the voxelizers listed (the target cleared first), or
+// per voxel of the grid, writes its emitted radiance and opacity 1 for an occupied voxel (0
+// elsewhere), plus the direct light it reflects from every light whose texels found it (step 1,
+// gi/inject.comp, set their bits in lit_side): albedo/pi * E * |n.l| (Lambert, n the voxel's
+// averaged normal, E at the voxel centre). It also records the lit side: the voxel normal
+// turned towards the light that gives the most, which the anisotropic filter uses to keep a lit
+// face dark when seen from behind (a Lambertian face reflects into its own hemisphere only),
+// and around which the voxel-space bounce gathers.
+#define VCT_OWN_PUSH
+#include "frame.glsl"
+// Whether any of the scene's lights is an area light; without one the polygon's code is compiled
+// out of the light loop below (common/light.glsl).
+layout(constant_id = 3) const bool AREA_LIGHTS = true;
+#define VCT_AREA_LIGHTS AREA_LIGHTS
+#include "light.glsl"
 #include "rgb9e5.glsl"
-#define OCCUPIED_SET 0
+#include "lit_side.glsl"
+#define OCCUPIED_SET 1
 #define OCCUPIED_BINDING 3
 #include "listed.glsl"
 
 layout(local_size_x = WORKGROUP_3D, local_size_y = WORKGROUP_3D, local_size_z = WORKGROUP_3D) in;
-layout(set = 0, binding = 0, r32ui) uniform readonly uimage3D voxel_albedo;
-layout(set = 0, binding = 1, r32ui) uniform readonly uimage3D voxel_emission;
-layout(set = 0, binding = 2, rgba16f) uniform writeonly image3D target;
-#define BRICKS_SET 0
+layout(set = 1, binding = 0, r32ui) uniform readonly uimage3D voxel_albedo;
+layout(set = 1, binding = 1, r32ui) uniform readonly uimage3D voxel_emission;
+layout(set = 1, binding = 2, rgba16f) uniform writeonly image3D target;
+layout(set = 1, binding = 5, r32ui) uniform readonly uimage3D voxel_normal;
+layout(set = 1, binding = 6, r32ui) uniform uimage3D lit_side;
+#define BRICKS_SET 1
 #define BRICKS_BINDING 4
 #include "bricks.glsl"
 
 // Over the occupied voxels the voxelizers listed (the rest of the target cleared), or every voxel.
 layout(constant_id = 0) const bool LISTED = false;
 
+const float PI = 3.14159265358979;
+
 void main() {
     ivec3 v;
     if (!listed_or_dense(LISTED, stored_grid(imageSize(target)), v)) return;
     // Sparse storage: a voxel outside every brick is the empty slot, which this leaves zero.
-    v = stored_at(v);
-    bool full = (imageLoad(voxel_albedo, v).r >> 24) != 0u;
-    vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, v).r);
-    imageStore(target, v, full ? vec4(emission, 1.0) : vec4(0.0));
+    ivec3 t = stored_at(v);
+    uint a = imageLoad(voxel_albedo, t).r;
+    if ((a >> 24) == 0u) {
+        imageStore(target, t, vec4(0.0));
+        return;
+    }
+    vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, t).r);
+    uint lights = imageLoad(lit_side, t).r >> 24;
+    // The lights' loop runs for no voxel of a SIMD group that none lit (a loop, not a branch: a
+    // CPU driver runs a branch for every lane when any lane takes it).
+    int count = lights != 0u ? light_count() : 0;
+    vec3 normal = unpackUnorm4x8(imageLoad(voxel_normal, t).r).xyz * 2.0 - 1.0;
+    vec3 albedo = unpackUnorm4x8(a).rgb;
+    vec3 centre = texel_centre_world(v);
+    bool oriented = length(normal) > 1e-3;
+    vec3 reflected = vec3(0.0), brightest = vec3(0.0);
+    float most = -1.0;
+    for (int k = 0; k < count; k++) {
+        if ((lights & (1u << k)) == 0u) continue;
+        vec3 l;
+        // The voxel's normal has no sign: the side facing the light's position (an area light
+        // clips its polygon to that side's horizon).
+        vec3 n = oriented ? normalize(normal) : vec3(0.0);
+        if (dot(n, frame.lights[k].position.xyz - centre) < 0.0) n = -n;
+        vec3 irradiance = light_incident(k, centre, n, l);
+        float cos_theta = oriented ? abs(dot(n, l)) : 1.0;
+        vec3 r = albedo / PI * irradiance * cos_theta;
+        reflected += r;
+        float lum = dot(r, vec3(1.0));
+        if (lum > most) {
+            most = lum;
+            brightest = l;
+        }
+    }
+    imageStore(target, t, vec4(emission + reflected, 1.0));
+    // The lights' bits stay; a voxel with no normal keeps none of a side (lit_side.glsl).
+    if (lights != 0u) {
+        vec3 side = oriented ? normalize(normal) * (dot(normal, brightest) < 0.0 ? -1.0 : 1.0) : vec3(-1.0);
+        imageStore(lit_side, t, uvec4(pack_lit_side(side, lights)));
+    }
 }

@@ -1,11 +1,12 @@
-//! Radiance injection (Freed 2018 §4.3, Algorithm 2) in two compute dispatches: resolve (one
-//! thread per voxel: opacity of every occupied voxel plus emission) and inject (one thread per
-//! shadow-map texel: the direct light each lit voxel reflects, and its lit side). The temporal
-//! blend into the radiance volume follows (`temporal.rs`).
+//! Radiance injection (Freed 2018 §4.3, Algorithm 2) in two compute dispatches: inject (one
+//! thread per shadow-map texel: marks the voxel it finds lit by its light) and resolve (one
+//! thread per voxel: opacity of every occupied voxel plus emission, and the direct light it
+//! reflects from the lights that marked it, with its lit side). The temporal blend into the
+//! radiance volume follows (`temporal.rs`).
 //!
 //! The shadow map is sized for direct shadows, not for the grid: a 2048² map over a 64³ grid
-//! puts some 30 texels across each voxel, and every one of them injects the same value (it is
-//! computed at the voxel centre). So injection reads every `stride`-th texel, the stride chosen
+//! puts some 30 texels across each voxel, and every one of them finds the same voxel (whose
+//! light is computed at its centre, once). So injection reads every `stride`-th texel, the stride chosen
 //! to keep `texels_per_voxel` texels across a voxel at the farthest lit point: its cost then
 //! follows the grid's voxel size over the lit extent. How many it needs is set by the surfaces
 //! the light grazes, whose voxels few texels hit (config.h, INJECT_TEXELS_PER_VOXEL). Each layer
@@ -18,7 +19,7 @@ use ash::vk;
 
 use super::radiance::RadianceVolume;
 use super::shadow::ShadowPass;
-use crate::config::{INJECT_GATHER, INJECT_MARK, INJECT_ONE, WORKGROUP_2D};
+use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
 use crate::scene::gpu::SceneGpu;
@@ -65,18 +66,26 @@ impl InjectPass {
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
         let buffer = |b| Binding::new(b, vk::DescriptorType::STORAGE_BUFFER, c);
         let bricks = &voxels.bricks;
-        let resolve_set =
-            DescriptorSet::new(ctx, "resolve", &[storage(0), storage(1), storage(2), buffer(3), buffer(4)])?;
+        let resolve_set = DescriptorSet::new(
+            ctx,
+            "resolve",
+            &[storage(0), storage(1), storage(2), buffer(3), buffer(4), storage(5), storage(6)],
+        )?;
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
         resolve_set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &voxels.occupied.list);
         resolve_set.write_buffer(4, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
+        resolve_set.write_storage(5, voxels.normal.view.raw);
+        resolve_set.write_storage(6, radiance.lit_side.view.raw);
         let resolve = Pipeline::compute(
             ctx,
             "resolve",
-            Stage::new(c, shaders::GI_RESOLVE_COMP).spec(&bricks.spec(listed as u32)),
-            &[resolve_set.layout],
+            // Constant 3: whether any light is an area light (else its code is compiled out).
+            Stage::new(c, shaders::GI_RESOLVE_COMP)
+                .spec(&[bricks.spec(listed as u32).as_slice(), &[scene.area_lights as u32]].concat())
+                .grid(voxels.grid.spec()),
+            &[scene.set.layout, resolve_set.layout],
             0,
         )?;
 
@@ -92,32 +101,18 @@ impl InjectPass {
         let inject_set = DescriptorSet::new(
             ctx,
             "inject",
-            &[
-                Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
-                storage(1),
-                storage(2),
-                storage(3),
-                storage(4),
-                storage(5),
-                buffer(6),
-            ],
+            &[Binding::new(0, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c), storage(1), storage(2), buffer(3)],
         )?;
         inject_set.write_sampled(0, shadow.map.view.raw, depth_sampler.raw);
         inject_set.write_storage(1, voxels.albedo.view.raw);
-        inject_set.write_storage(2, voxels.normal.view.raw);
-        inject_set.write_storage(3, voxels.emission.view.raw);
-        inject_set.write_storage(4, radiance.injected.view.raw);
-        inject_set.write_storage(5, radiance.lit_side.view.raw);
-        inject_set.write_buffer(6, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
+        inject_set.write_storage(2, radiance.lit_side.view.raw);
+        inject_set.write_buffer(3, vk::DescriptorType::STORAGE_BUFFER, &bricks.table);
         let inject = Pipeline::compute(
             ctx,
             "inject",
-            // Constant 3: whether any light is an area light (else its code is compiled out).
-            Stage::new(c, shaders::GI_INJECT_COMP)
-                .spec(&[bricks.spec(0).as_slice(), &[scene.area_lights as u32]].concat())
-                .grid(voxels.grid.spec()),
+            Stage::new(c, shaders::GI_INJECT_COMP).spec(&bricks.spec(0)).grid(voxels.grid.spec()),
             &[scene.set.layout, inject_set.layout],
-            16,
+            12,
         )?;
         Ok(InjectPass {
             ctx: ctx.clone(),
@@ -133,7 +128,7 @@ impl InjectPass {
         })
     }
 
-    /// Fills `radiance.injected` (emission and opacity, plus the shadowed light's reflection
+    /// Fills `radiance.injected` (emission and opacity, plus the shadowed lights' reflection
     /// when `light`) and `radiance.lit_side`, over `occupied` (the voxelizers' list) when listed.
     pub fn record(
         &self,
@@ -148,37 +143,26 @@ impl InjectPass {
         gpu::clear_to_general(ctx, cmd, &radiance.lit_side, scope::ANY);
         if self.listed {
             gpu::clear_to_general(ctx, cmd, &radiance.injected, scope::ANY);
-            gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         }
-        self.resolve.bind(cmd, &[self.resolve_set.raw]);
-        occupied.dispatch_or_dense(cmd, self.listed, self.dims);
-        gpu::memory_barrier(ctx, cmd, w, r);
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
         if light {
-            self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
             // One dispatch per layer of each light's shadow map (a point or area light's six
-            // cube faces). One light writes its voxels at once. Several first mark which
-            // voxels each finds, then each writes to its voxels the light of all the lights
-            // that found them: a voxel's value is then the sum of what each light alone gives
-            // it, the same whichever dispatch lands last (inject.comp).
-            let dispatch_all = |phase: u32| {
-                for (light, layers) in self.strides.iter().enumerate() {
-                    for (layer, stride) in layers.iter().enumerate() {
-                        let Some(stride) = *stride else { continue };
-                        let s = self.shadow_resolution.div_ceil(stride);
-                        self.inject.push(cmd, &[stride, light as u32, phase, layer as u32]);
-                        gpu::dispatch(ctx, cmd, [s, s, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
-                    }
+            // cube faces), each marking the voxels its texels find with its light's bit.
+            self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);
+            for (light, layers) in self.strides.iter().enumerate() {
+                for (layer, stride) in layers.iter().enumerate() {
+                    let Some(stride) = *stride else { continue };
+                    let s = self.shadow_resolution.div_ceil(stride);
+                    self.inject.push(cmd, &[stride, light as u32, layer as u32]);
+                    gpu::dispatch(ctx, cmd, [s, s, 1], [WORKGROUP_2D, WORKGROUP_2D, 1]);
                 }
-            };
-            if self.strides.len() == 1 {
-                dispatch_all(INJECT_ONE);
-            } else {
-                dispatch_all(INJECT_MARK);
-                gpu::memory_barrier(ctx, cmd, r, r);
-                dispatch_all(INJECT_GATHER);
             }
-            gpu::memory_barrier(ctx, cmd, w, r);
+            gpu::memory_barrier(ctx, cmd, r, r);
         }
+        // Every occupied voxel once: its emission, opacity and the light of the lights that
+        // marked it (a voxel's value is then the sum of what each light alone gives it).
+        self.resolve.bind(cmd, &[scene.set.raw, self.resolve_set.raw]);
+        occupied.dispatch_or_dense(cmd, self.listed, self.dims);
+        gpu::memory_barrier(ctx, cmd, w, r);
     }
 }
