@@ -680,6 +680,11 @@ pub struct RenderArgs {
     /// (with --frames: the timings of a still view).
     #[arg(long, value_enum, default_value = "off")]
     pub reuse_volume: OnOff,
+    /// Turn the camera about its target by this many degrees a frame, about the vertical axis,
+    /// after each frame (with --frames: the timings of a moving view, as the stability bench's
+    /// orbiting camera moves).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub orbit: Option<f32>,
     /// With --res auto: the largest FLIP against the path-traced reference the grid may give
     /// (0..1).
     #[arg(long, value_name = "F")]

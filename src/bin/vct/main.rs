@@ -102,25 +102,43 @@ fn render(args: RenderArgs) -> Result<()> {
         options.resolution = Some(c.resolution);
         choice = Some(c);
     }
-    let renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
+    let mut renderer = Renderer::new(&ctx, scene, options).context("creating the renderer")?;
     for n in &renderer.notes {
         println!("note: {n}");
     }
     if !(1..=10_000).contains(&args.frames) {
         bail!("--frames must be in 1..=10000, got {}", args.frames);
     }
+    let turn = match args.orbit {
+        Some(deg) if !deg.is_finite() || deg.abs() > 180.0 => {
+            bail!("--orbit must be a finite angle within ±180 degrees, got {deg}")
+        }
+        deg => deg.map(|d| glam::Quat::from_rotation_y(d.to_radians())),
+    };
+    // After each frame, the camera turns (--orbit); a volume that follows it moves with it.
+    let orbit = |r: &mut Renderer| -> Result<()> {
+        if let Some(turn) = turn {
+            let c = &mut r.scene.camera;
+            c.eye = c.target + turn * (c.eye - c.target);
+            let eye = c.eye;
+            r.follow(eye).context("moving the camera (--orbit)")?;
+        }
+        Ok(())
+    };
     let mut runs = Vec::new();
     let started = std::time::Instant::now();
     match args.in_flight {
         None => {
             for _ in 0..args.frames {
                 runs.push(renderer.render().context("rendering")?);
+                orbit(&mut renderer)?;
             }
         }
         Some(k) => {
             let mut ring = vct::gpu::FrameRing::new(&ctx, k as usize)?;
             for _ in 0..args.frames {
                 runs.push(renderer.submit_in_flight(&mut ring).context("rendering")?);
+                orbit(&mut renderer)?;
             }
             ring.wait_idle()?;
             // The last two frames, which no later frame waited for.
