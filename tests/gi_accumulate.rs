@@ -256,3 +256,55 @@ fn pixels_awaiting_their_own_trace_hold_a_steady_estimate() {
     assert!(change < 0.04, "pixels awaiting their own trace change by {change:.4} a frame");
     common::assert_clean(&ctx);
 }
+
+/// Whether a frame's timings include a pass.
+fn ran(timings: &[vct::gpu::Timing], pass: &str) -> bool {
+    timings.iter().any(|t| t.pass == pass)
+}
+
+#[test]
+fn a_settled_still_view_skips_the_trace_and_shows_the_same_image() {
+    let ctx = common::context();
+    let scene = scene();
+    let scale = 2u32;
+    let cycle = (scale * scale) as usize;
+    // Keeping the volume lets a still view settle; building it every frame never does (the same
+    // volume to the bit, tests/reuse_volume.rs).
+    let mut settling = Renderer::new(&ctx, scene.clone(), options(scale, true)).unwrap();
+    let mut tracing =
+        Renderer::new(&ctx, scene.clone(), RenderOptions { reuse_volume: false, ..options(scale, true) }).unwrap();
+    let mut skipped = 0;
+    for f in 0..2 * cycle + 2 {
+        // A cut after the first frame, so that the traces of the cycle before settling are the
+        // only ones of the view it settles on.
+        if f == 1 {
+            for r in [&mut settling, &mut tracing] {
+                r.scene.camera = orbit(&r.scene.camera, 10.0);
+            }
+        }
+        let t = settling.render().unwrap();
+        assert!(ran(&tracing.render().unwrap(), "trace"), "frame {f}: a volume built every frame settles nothing");
+        // The cycle of frames after the cut traces, and then every pixel holds its own trace.
+        assert_eq!(ran(&t, "trace"), f <= cycle, "frame {f}: {t:?}");
+        assert_eq!(ran(&t, "accumulate"), f <= cycle, "frame {f}");
+        assert!(ran(&t, "shade pixels"), "frame {f}");
+        skipped += !ran(&t, "trace") as u32;
+    }
+    let (a, b) = (settling.read_frame().unwrap(), tracing.read_frame().unwrap());
+    let still = difference(&a, &b, |_| true);
+    // Then the camera moves: the settled renderer traces again, from the history it last wrote.
+    for f in 0..3 {
+        for r in [&mut settling, &mut tracing] {
+            r.scene.camera = orbit(&r.scene.camera, 2.0);
+        }
+        assert!(ran(&settling.render().unwrap(), "trace"), "moving frame {f}");
+        tracing.render().unwrap();
+    }
+    let moved = difference(&settling.read_frame().unwrap(), &tracing.read_frame().unwrap(), |_| true);
+    println!("{skipped} frames skipped the trace; against tracing every frame: still {still:.6}, moving {moved:.6}");
+    // A history read from the wrong frame (its traces one jitter position short) or stale after
+    // the move would differ by percents.
+    assert!(still < 1e-6, "the settled view differs from tracing every frame: {still:.6}");
+    assert!(moved < 1e-6, "after settling, the moving view differs from tracing every frame: {moved:.6}");
+    common::assert_clean(&ctx);
+}

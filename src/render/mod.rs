@@ -187,8 +187,10 @@ pub struct RenderOptions {
     /// static; the lights, the grid and the GI settings are as they were; no temporal filter
     /// still converging; a camera-independent voxelizer): the viewer's frame is then the
     /// G-buffer and the shading. When only the lights (or the GI settings) changed, the voxels
-    /// are kept and the light's passes run. Off, every frame builds the volume again (bench,
-    /// render).
+    /// are kept and the light's passes run. With accumulation, a still view that has traced
+    /// every pixel since the last change shades from its history without tracing
+    /// (`deferred::DeferredShadePass::settled`). Off, every frame builds the volume again and
+    /// traces (bench, render).
     pub reuse_volume: bool,
 }
 
@@ -260,6 +262,10 @@ pub struct Renderer {
     /// Whether this frame keeps last frame's voxels ([`Voxelizer::key`]): a turning light
     /// needs new shadow maps, injection and filtering, but not new voxels.
     voxels_kept: Kept,
+    /// Whether this frame's uniforms, but the screen-space jitter and history, are the last
+    /// frame's: with the volume kept, a still view's traced light is then too
+    /// ([`deferred::DeferredShadePass::settle`]).
+    traced_kept: Kept,
     /// Problems worth telling the user (coarse shadow map, subdivided triangles).
     pub notes: Vec<String>,
 }
@@ -433,6 +439,7 @@ impl Renderer {
             previous_view_proj: Cell::new(None),
             volume_kept: Kept::default(),
             voxels_kept: Kept::default(),
+            traced_kept: Kept::default(),
             notes,
         })
     }
@@ -470,6 +477,13 @@ impl Renderer {
             voxels.extend_from_slice(bytemuck::bytes_of(&c.origins));
         }
         self.voxels_kept.update(voxels, reuse);
+        if let Some(d) = &self.deferred {
+            let mut k = u;
+            k.previous_view_proj = glam::Mat4::ZERO;
+            k.gi_jitter = glam::Vec4::ZERO;
+            self.traced_kept.update(bytemuck::bytes_of(&k).to_vec(), reuse);
+            d.settle(self.traced_kept.get() && self.volume_kept.get());
+        }
     }
 
     /// Records one whole frame. The passes, in order:

@@ -676,8 +676,9 @@ pub struct RenderArgs {
     /// GPU").
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=2))]
     pub in_flight: Option<u32>,
-    /// Keep the volume between frames while nothing it depends on changes, as `vct view` does
-    /// (with --frames: the timings of a still view).
+    /// Keep the volume between frames while nothing it depends on changes, as `vct view` does,
+    /// and, once a still view has traced every pixel (--gi-accumulate, gi-scale² frames), its
+    /// traced light too (with --frames: the timings of a still view; --orbit for a moving one).
     #[arg(long, value_enum, default_value = "off")]
     pub reuse_volume: OnOff,
     /// Turn the camera about its target by this many degrees a frame, about the vertical axis,
