@@ -156,6 +156,8 @@ fn cli_reports_bad_input_without_panicking() {
         ("--in-flight", "0"),
         ("--in-flight", "3"),
         ("--coverage", "exact"),
+        ("--orbit", "NaN"),
+        ("--orbit", "270"),
     ] {
         let (code, err) = vct(&["render", flag, value, "--out", d.join("w.png").to_str().unwrap()]);
         assert_eq!(code, 2, "{flag} {value}: {err}");

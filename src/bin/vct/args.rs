@@ -294,6 +294,10 @@ pub fn temporal(text: &str) -> std::result::Result<f32, String> {
     float_in(text, 0.01, 1.0)
 }
 
+pub fn orbit_degrees(text: &str) -> std::result::Result<f32, String> {
+    float_in(text, -180.0, 180.0)
+}
+
 impl SceneArgs {
     pub fn follow(&self) -> Option<vct::render::Follow> {
         self.follow.map(|extent| vct::render::Follow { extent, snap: !self.no_snap })
@@ -684,7 +688,7 @@ pub struct RenderArgs {
     /// Turn the camera about its target by this many degrees a frame, about the vertical axis,
     /// after each frame (with --frames: the timings of a moving view, as the stability bench's
     /// orbiting camera moves).
-    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = orbit_degrees)]
     pub orbit: Option<f32>,
     /// With --res auto: the largest FLIP against the path-traced reference the grid may give
     /// (0..1).

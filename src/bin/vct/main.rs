@@ -109,12 +109,7 @@ fn render(args: RenderArgs) -> Result<()> {
     if !(1..=10_000).contains(&args.frames) {
         bail!("--frames must be in 1..=10000, got {}", args.frames);
     }
-    let turn = match args.orbit {
-        Some(deg) if !deg.is_finite() || deg.abs() > 180.0 => {
-            bail!("--orbit must be a finite angle within ±180 degrees, got {deg}")
-        }
-        deg => deg.map(|d| glam::Quat::from_rotation_y(d.to_radians())),
-    };
+    let turn = args.orbit.map(|deg| glam::Quat::from_rotation_y(deg.to_radians()));
     // After each frame, the camera turns (--orbit); a volume that follows it moves with it.
     let orbit = |r: &mut Renderer| -> Result<()> {
         if let Some(turn) = turn {
