@@ -15,6 +15,8 @@
 layout(constant_id = 3) const bool AREA_LIGHTS = true;
 #define VCT_AREA_LIGHTS AREA_LIGHTS
 #include "light.glsl"
+layout(set = 1, binding = 7) uniform sampler2DArrayShadow shadow_map;
+#include "shadow.glsl"
 #include "rgb9e5.glsl"
 #include "lit_side.glsl"
 #define OCCUPIED_SET 1
@@ -33,6 +35,9 @@ layout(set = 1, binding = 6, r32ui) uniform uimage3D lit_side;
 
 // Over the occupied voxels the voxelizers listed (the rest of the target cleared), or every voxel.
 layout(constant_id = 0) const bool LISTED = false;
+// Injection from the voxels (GiSettings::injection): no texels marked the voxel; it looks its
+// lit side up in each light's shadow map itself.
+layout(constant_id = 4) const bool FROM_VOXELS = false;
 
 const float PI = 3.14159265358979;
 
@@ -47,7 +52,7 @@ void main() {
         return;
     }
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, t).r);
-    uint lights = imageLoad(lit_side, t).r >> 24;
+    uint lights = FROM_VOXELS ? 0xffu : imageLoad(lit_side, t).r >> 24;
     // The lights' loop runs for no voxel of a SIMD group that none lit (a loop, not a branch: a
     // CPU driver runs a branch for every lane when any lane takes it).
     int count = lights != 0u ? light_count() : 0;
@@ -66,6 +71,18 @@ void main() {
         if (dot(n, frame.lights[k].position.xyz - centre) < 0.0) n = -n;
         vec3 irradiance = light_incident(k, centre, n, l);
         float cos_theta = oriented ? abs(dot(n, l)) : 1.0;
+        if (FROM_VOXELS) {
+            // The voxel's surface on the side facing the light, half a voxel out from its centre
+            // (a voxel without a normal: its centre), in the light's shadow map.
+            vec3 side = oriented ? (dot(n, l) < 0.0 ? -n : n) : l;
+            float half_voxel = 0.5 * frame.voxel_origin.w * (clip_on() ? frame.clip_levels[v.z / int(frame.clip.y)].w : 1.0);
+            float seen = shadow_factor(k, centre + (oriented ? side * half_voxel : vec3(0.0)), side);
+            if (seen <= 0.0) {
+                lights &= ~(1u << k);
+                continue;
+            }
+            irradiance *= seen;
+        }
         vec3 r = albedo / PI * irradiance * cos_theta;
         reflected += r;
         float lum = dot(r, vec3(1.0));
@@ -74,6 +91,7 @@ void main() {
             brightest = l;
         }
     }
+    if (FROM_VOXELS) lights &= (1u << uint(count)) - 1u;
     imageStore(target, t, vec4(emission + reflected, 1.0));
     // The lights' bits stay; a voxel with no normal keeps none of a side (lit_side.glsl).
     if (lights != 0u) {

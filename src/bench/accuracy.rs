@@ -20,7 +20,7 @@ use crate::gpu::{timer::median, Context};
 use crate::reference::metrics;
 use crate::reference::pathtrace::{PathTracer, PrimaryHit};
 use crate::render::{RenderOptions, Renderer, View};
-use crate::scene::file::{ConeSet, Filter, GiFile, LevelRule};
+use crate::scene::file::{ConeSet, Filter, GiFile, Injection, LevelRule};
 use crate::scene::Scene;
 use crate::voxel::{Coverage, VoxelizeMethod};
 
@@ -431,6 +431,11 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     out.push(v("default, step 0.25", GiFile { step: 0.25, ..d() }));
     out.push(v("default, step 1", GiFile { step: 1.0, ..d() }));
     out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
+    let injection = match default.injection {
+        Injection::Texels => Injection::Voxels,
+        Injection::Voxels => Injection::Texels,
+    };
+    out.push(v(&format!("default, injection from {}", injection.name()), GiFile { injection, ..d() }));
     if default.bounces > 1 {
         for cones in ConeSet::ALL {
             if cones != default.bounce_cones {

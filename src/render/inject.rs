@@ -41,6 +41,10 @@ pub struct InjectPass {
     strides: Vec<Vec<Option<u32>>>,
     /// The resolve runs over the occupied voxels (the target cleared first).
     listed: bool,
+    /// Injection from the voxels (`Injection::Voxels`): no texel pass; the resolve looks each
+    /// voxel up in the shadow maps.
+    from_voxels: bool,
+    _shadow_sampler: Sampler,
 }
 
 /// The stride that leaves `texels_per_voxel` texels of `texel` world size across a `voxel`
@@ -53,6 +57,7 @@ pub fn injection_stride(texel: f32, voxel: f32, texels_per_voxel: f32) -> u32 {
 }
 
 impl InjectPass {
+    #[allow(clippy::too_many_arguments)] // the passes it reads, the strides, and two switches
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
@@ -61,6 +66,7 @@ impl InjectPass {
         radiance: &RadianceVolume,
         strides: Vec<Vec<Option<u32>>>,
         listed: bool,
+        from_voxels: bool,
     ) -> Result<Self> {
         let c = vk::ShaderStageFlags::COMPUTE;
         let storage = |b| Binding::new(b, vk::DescriptorType::STORAGE_IMAGE, c);
@@ -69,8 +75,19 @@ impl InjectPass {
         let resolve_set = DescriptorSet::new(
             ctx,
             "resolve",
-            &[storage(0), storage(1), storage(2), buffer(3), buffer(4), storage(5), storage(6)],
+            &[
+                storage(0),
+                storage(1),
+                storage(2),
+                buffer(3),
+                buffer(4),
+                storage(5),
+                storage(6),
+                Binding::new(7, vk::DescriptorType::COMBINED_IMAGE_SAMPLER, c),
+            ],
         )?;
+        let shadow_sampler = Sampler::shadow(ctx, "injection shadow")?;
+        resolve_set.write_sampled(7, shadow.map.view.raw, shadow_sampler.raw);
         resolve_set.write_storage(0, voxels.albedo.view.raw);
         resolve_set.write_storage(1, voxels.emission.view.raw);
         resolve_set.write_storage(2, radiance.injected.view.raw);
@@ -83,7 +100,9 @@ impl InjectPass {
             "resolve",
             // Constant 3: whether any light is an area light (else its code is compiled out).
             Stage::new(c, shaders::GI_RESOLVE_COMP)
-                .spec(&[bricks.spec(listed as u32).as_slice(), &[scene.area_lights as u32]].concat())
+                .spec(
+                    &[bricks.spec(listed as u32).as_slice(), &[scene.area_lights as u32, from_voxels as u32]].concat(),
+                )
                 .grid(voxels.grid.spec()),
             &[scene.set.layout, resolve_set.layout],
             0,
@@ -125,6 +144,8 @@ impl InjectPass {
             shadow_resolution: shadow.map.desc.extent.width,
             strides,
             listed,
+            from_voxels,
+            _shadow_sampler: shadow_sampler,
         })
     }
 
@@ -145,7 +166,7 @@ impl InjectPass {
             gpu::clear_to_general(ctx, cmd, &radiance.injected, scope::ANY);
         }
         gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, r);
-        if light {
+        if light && !self.from_voxels {
             // One dispatch per layer of each light's shadow map (a point or area light's six
             // cube faces), each marking the voxels its texels find with its light's bit.
             self.inject.bind(cmd, &[scene.set.raw, self.inject_set.raw]);

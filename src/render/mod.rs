@@ -361,7 +361,8 @@ impl Renderer {
                     .collect()
             })
             .collect();
-        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed)?;
+        let from_voxels = scene.settings.gi.injection == crate::scene::file::Injection::Voxels;
+        let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed, from_voxels)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none() && options.clipmap.is_none();
         let temporal = TemporalBlend::new(ctx, &scene_gpu, &radiance, &voxels, listed, fixed)?;

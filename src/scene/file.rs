@@ -61,6 +61,32 @@ pub struct GiFile {
     /// Emissive quads light the scene as area lights (`scene::area`: exact irradiance, shadow
     /// mapped) rather than through their voxels. Read when the scene loads.
     pub area_lights: bool,
+    /// How injection finds the lit voxels: from the shadow map's texels, or from the voxels.
+    pub injection: Injection,
+}
+
+/// How injection finds the voxels a light lights (render::inject).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Injection {
+    /// Each shadow-map texel reconstructs its lit point and marks its voxel (Freed 2018 §4.3,
+    /// Algorithm 2): the cost follows the map's texels, and a voxel no texel reaches (a surface
+    /// the light grazes, or a grid finer than the map) stays dark.
+    #[default]
+    Texels,
+    /// Each occupied voxel looks its lit side up in the shadow map (as surface shading does, with
+    /// its PCF): the cost follows the occupied voxels. The default (docs/benchmarks.md,
+    /// "Injection from the voxels").
+    Voxels,
+}
+
+impl Injection {
+    pub fn name(self) -> &'static str {
+        match self {
+            Injection::Texels => "texels",
+            Injection::Voxels => "voxels",
+        }
+    }
 }
 
 /// Radiance mip filtering.
@@ -172,6 +198,7 @@ impl GiFile {
             bounces: 1,
             bounce_cones: ConeSet::Thesis5Cells,
             area_lights: false,
+            injection: Injection::Texels,
         }
     }
 }
@@ -179,7 +206,8 @@ impl GiFile {
 impl Default for GiFile {
     /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
     /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
-    /// back into the receiving surface, light hidden where it faces away, and eight narrow cones.
+    /// back into the receiving surface, light hidden where it faces away, eight narrow cones, and
+    /// injection from the voxels.
     fn default() -> Self {
         GiFile {
             steps: 256,
@@ -190,6 +218,7 @@ impl Default for GiFile {
             self_clamp: true,
             facing: true,
             area_lights: true,
+            injection: Injection::Voxels,
             ..GiFile::thesis()
         }
     }
