@@ -157,6 +157,7 @@ fn cli_reports_bad_input_without_panicking() {
         ("--in-flight", "3"),
         ("--coverage", "exact"),
         ("--orbit", "NaN"),
+        ("--injection", "pixels"),
         ("--orbit", "270"),
     ] {
         let (code, err) = vct(&["render", flag, value, "--out", d.join("w.png").to_str().unwrap()]);

@@ -406,8 +406,9 @@ impl Renderer {
                 grid.dims_label()
             ));
         }
+        // Injection from the texels misses the voxels no texel lands in (from the voxels, none).
         let texel = texels.iter().flatten().flatten().copied().fold(0.0, f32::max);
-        if texel > 0.7 * grid.voxel {
+        if !from_voxels && texel > 0.7 * grid.voxel {
             notes.push(format!(
                 "shadow map too coarse for the grid: a texel covers up to {texel:.4} m, a voxel {:.4} m; lit voxels may be missed during injection (raise shadow.resolution)",
                 grid.voxel

@@ -89,6 +89,16 @@ impl Injection {
     }
 }
 
+impl std::str::FromStr for Injection {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        [Injection::Texels, Injection::Voxels]
+            .into_iter()
+            .find(|i| i.name() == s)
+            .ok_or_else(|| format!("unknown injection '{s}' (texels|voxels)"))
+    }
+}
+
 /// Radiance mip filtering.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]

@@ -182,7 +182,8 @@ pub struct SceneArgs {
     /// the whole scene around the camera.
     #[arg(long, value_name = "EXTENT", value_parser = clip_extent, requires = "clipmap")]
     pub clip_extent: Option<f32>,
-    /// Shadow-map texels radiance injection reads across a voxel (0: every texel of the map).
+    /// With --injection texels: shadow-map texels injection reads across a voxel (0: every texel
+    /// of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels)]
     pub inject_texels: f32,
     /// Trace the diffuse cones at one pixel in 1, 4, 16 or 64 (1|2|4|8), upsampled edge-aware on the
@@ -222,6 +223,11 @@ pub struct SceneArgs {
     /// Diffuse cone set: thesis5|thesis5-cells|crassin6|fib8|fib16|fib32 (overrides gi.cones).
     #[arg(long)]
     pub cones: Option<vct::scene::file::ConeSet>,
+    /// How injection finds the lit voxels: voxels (each occupied voxel looks itself up in the
+    /// shadow maps) or texels (each shadow-map texel finds its voxel; Freed 2018 Algorithm 2)
+    /// (overrides gi.injection).
+    #[arg(long)]
+    pub injection: Option<vct::scene::file::Injection>,
 }
 
 pub fn float_in(text: &str, lo: f32, hi: f32) -> std::result::Result<f32, String> {
@@ -352,6 +358,9 @@ impl SceneArgs {
         }
         if let Some(c) = self.cones {
             gi.cones = c;
+        }
+        if let Some(i) = self.injection {
+            gi.injection = i;
         }
         Ok(scene)
     }
