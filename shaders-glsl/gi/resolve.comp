@@ -72,8 +72,11 @@ void main() {
         vec3 irradiance = light_incident(k, centre, n, l);
         float cos_theta = oriented ? abs(dot(n, l)) : 1.0;
         if (FROM_VOXELS) {
-            // The voxel's surface on the side facing the light, half a voxel out from its centre
-            // (a voxel without a normal: its centre), in the light's shadow map.
+            // The voxel's surface on the side facing the light, half a voxel (of its clipmap level)
+            // out from its centre (a voxel without a normal: its centre), in the light's shadow
+            // map. Texels as wide as a voxel only: a warped texel, up to four grid voxels deep,
+            // does not say where in it its surface lies (render::Renderer::new injects a warped
+            // grid from the texels).
             vec3 side = oriented ? (dot(n, l) < 0.0 ? -n : n) : l;
             float half_voxel = 0.5 * frame.voxel_origin.w * (clip_on() ? frame.clip_levels[v.z / int(frame.clip.y)].w : 1.0);
             float seen = shadow_factor(k, centre + (oriented ? side * half_voxel : vec3(0.0)), side);

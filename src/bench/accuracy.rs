@@ -431,11 +431,11 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     out.push(v("default, step 0.25", GiFile { step: 0.25, ..d() }));
     out.push(v("default, step 1", GiFile { step: 1.0, ..d() }));
     out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
-    let injection = match default.injection {
-        Injection::Texels => Injection::Voxels,
-        Injection::Voxels => Injection::Texels,
-    };
-    out.push(v(&format!("default, injection from {}", injection.name()), GiFile { injection, ..d() }));
+    for injection in [Injection::Texels, Injection::Voxels] {
+        if injection != default.injection {
+            out.push(v(&format!("default, injection from {}", injection.name()), GiFile { injection, ..d() }));
+        }
+    }
     if default.bounces > 1 {
         for cones in ConeSet::ALL {
             if cones != default.bounce_cones {

@@ -65,7 +65,7 @@ pub struct GiFile {
     pub injection: Injection,
 }
 
-/// How injection finds the voxels a light lights (render::inject).
+/// How injection finds the voxels a light lights (render::inject::from_voxels).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Injection {
@@ -75,9 +75,13 @@ pub enum Injection {
     #[default]
     Texels,
     /// Each occupied voxel looks its lit side up in the shadow map (as surface shading does, with
-    /// its PCF): the cost follows the occupied voxels. The default (docs/benchmarks.md,
-    /// "Injection from the voxels").
+    /// its PCF): the cost follows the occupied voxels. A warped grid, whose texels are not a
+    /// voxel wide, injects from the texels.
     Voxels,
+    /// From the texels where every light's map has INJECT_TEXELS_PER_VOXEL texels across a voxel
+    /// at the farthest point it lights, else from the voxels: the model's default
+    /// (docs/benchmarks.md, "Injection from the voxels").
+    Auto,
 }
 
 impl Injection {
@@ -85,6 +89,7 @@ impl Injection {
         match self {
             Injection::Texels => "texels",
             Injection::Voxels => "voxels",
+            Injection::Auto => "auto",
         }
     }
 }
@@ -92,10 +97,10 @@ impl Injection {
 impl std::str::FromStr for Injection {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        [Injection::Texels, Injection::Voxels]
+        [Injection::Texels, Injection::Voxels, Injection::Auto]
             .into_iter()
             .find(|i| i.name() == s)
-            .ok_or_else(|| format!("unknown injection '{s}' (texels|voxels)"))
+            .ok_or_else(|| format!("unknown injection '{s}' (auto|texels|voxels)"))
     }
 }
 
@@ -217,7 +222,7 @@ impl Default for GiFile {
     /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
     /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
     /// back into the receiving surface, light hidden where it faces away, eight narrow cones, and
-    /// injection from the voxels.
+    /// injection from the voxels where the shadow map is too coarse for texels to find them.
     fn default() -> Self {
         GiFile {
             steps: 256,
@@ -228,7 +233,7 @@ impl Default for GiFile {
             self_clamp: true,
             facing: true,
             area_lights: true,
-            injection: Injection::Voxels,
+            injection: Injection::Auto,
             ..GiFile::thesis()
         }
     }

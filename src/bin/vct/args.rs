@@ -224,8 +224,9 @@ pub struct SceneArgs {
     #[arg(long)]
     pub cones: Option<vct::scene::file::ConeSet>,
     /// How injection finds the lit voxels: voxels (each occupied voxel looks itself up in the
-    /// shadow maps) or texels (each shadow-map texel finds its voxel; Freed 2018 Algorithm 2)
-    /// (overrides gi.injection).
+    /// shadow maps; a warped grid injects from the texels), texels (each shadow-map texel finds
+    /// its voxel; Freed 2018 Algorithm 2), or auto (texels where the maps have 8 across a voxel,
+    /// else voxels) (overrides gi.injection).
     #[arg(long)]
     pub injection: Option<vct::scene::file::Injection>,
 }
