@@ -108,37 +108,23 @@ fn cornell_regions_get_the_reference_indirect_light() {
     assert!(ceiling.2 < 0.3, "the thesis' ceiling should be far too dark: {:.3}", ceiling.2);
 }
 
-/// Injection from the voxels (which the default chooses where the spot's map has fewer than 8
-/// texels across a voxel: here about 6.5 at 64³ and 1.6 at 256³) gives every region the
-/// reference's indirect light within the issue's band (±20%) at 64³ and at 256³. There
-/// injection from the texels misses voxels no texel lands in, and the floor fell to 0.73 of the
-/// reference in the bench (0.92 from the voxels; docs/benchmarks.md, "Injection from the
-/// voxels").
+/// Injection from the voxels (`[gi] injection = "voxels"`) gives every region the reference's
+/// indirect light within the issue's band (±20%) at 64³, as injection from the texels does; on
+/// the short box's front face, which the spot grazes, nearer the reference (measured 1.05
+/// against 1.20). At 256³ neither keeps the floor in the band (0.77 from the voxels, 0.73 from
+/// the texels; docs/benchmarks.md, "Injection from the voxels").
 #[test]
-fn injection_from_the_voxels_keeps_every_region_in_band_on_coarse_and_fine_grids() {
+fn injection_from_the_voxels_keeps_every_region_in_band() {
     use vct::scene::file::Injection;
-    assert_eq!(GiFile::default().injection, Injection::Auto);
-    let voxels = GiFile { injection: Injection::Voxels, ..GiFile::default() };
-    let scene = cornell_128();
-    let texels: Vec<_> = (scene.lights.iter())
-        .map(|l| vct::render::frame::layer_texel_sizes(l, &scene.mesh.bounds, scene.settings.shadow_resolution))
-        .collect();
-    for res in [64, 256] {
-        // The room's longest side over the grid: the fitted grid's voxel, near enough.
-        let voxel = scene.mesh.bounds.size().max_element() / res as f32;
-        assert!(
-            vct::render::inject::from_voxels(Injection::Auto, &texels, voxel, false),
-            "{res}³: auto chose the texels"
-        );
-        let ratios = region_ratios(voxels.clone(), res);
-        let texels = region_ratios(GiFile { injection: Injection::Texels, ..GiFile::default() }, res);
-        for ((label, _, v), (_, _, t)) in ratios.iter().zip(&texels) {
-            println!("{res}³ {label:<28} from the voxels {v:.3}, from the texels {t:.3}");
-        }
-        assert!(ratios.len() >= 7, "too few regions to judge: {ratios:?}");
-        for (label, _, v) in &ratios {
-            assert!((0.8..=1.2).contains(v), "{res}³, {label}: indirect light {v:.3} of the reference's");
-        }
+    assert_eq!(GiFile::default().injection, Injection::Texels);
+    let ratios = region_ratios(GiFile { injection: Injection::Voxels, ..GiFile::default() }, 64);
+    let texels = region_ratios(GiFile::default(), 64);
+    for ((label, _, v), (_, _, t)) in ratios.iter().zip(&texels) {
+        println!("{label:<28} from the voxels {v:.3}, from the texels {t:.3}");
+    }
+    assert!(ratios.len() >= 7, "too few regions to judge: {ratios:?}");
+    for (label, _, v) in &ratios {
+        assert!((0.8..=1.2).contains(v), "{label}: indirect light {v:.3} of the reference's");
     }
 }
 

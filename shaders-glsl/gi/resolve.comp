@@ -41,6 +41,16 @@ layout(constant_id = 4) const bool FROM_VOXELS = false;
 
 const float PI = 3.14159265358979;
 
+// Whether the voxel next to `v` along the main axis of `side` (towards the light) is occupied,
+// in the same grid or clipmap level.
+bool first_toward_light_is_not(ivec3 v, vec3 side) {
+    vec3 a = abs(side);
+    ivec3 step = a.x >= a.y && a.x >= a.z ? ivec3(sign(side.x), 0, 0) : (a.y >= a.z ? ivec3(0, sign(side.y), 0) : ivec3(0, 0, sign(side.z)));
+    ivec3 u = v + step;
+    bool inside = clip_on() ? clip_in_level(u, v.z / int(frame.clip.y)) : voxel_in_grid(u);
+    return inside && (imageLoad(voxel_albedo, stored_at(u)).r >> 24) != 0u;
+}
+
 void main() {
     ivec3 v;
     if (!listed_or_dense(LISTED, stored_grid(imageSize(target)), v)) return;
@@ -78,6 +88,14 @@ void main() {
             // does not say where in it its surface lies (render::Renderer::new injects a warped
             // grid from the texels).
             vec3 side = oriented ? (dot(n, l) < 0.0 ? -n : n) : l;
+            // Only the first occupied voxel met from the light, as the texels' walk finds it: a
+            // wall on a voxel boundary lies in the voxels of both its sides, and the far one's
+            // lit side is the wall's own lit face (the stability bench's two rooms: 770 voxels of
+            // the dark room lit without this).
+            if (oriented && first_toward_light_is_not(v, side)) {
+                lights &= ~(1u << k);
+                continue;
+            }
             float half_voxel = 0.5 * frame.voxel_origin.w * (clip_on() ? frame.clip_levels[v.z / int(frame.clip.y)].w : 1.0);
             float seen = shadow_factor(k, centre + (oriented ? side * half_voxel : vec3(0.0)), side);
             if (seen <= 0.0) {

@@ -431,7 +431,7 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     out.push(v("default, step 0.25", GiFile { step: 0.25, ..d() }));
     out.push(v("default, step 1", GiFile { step: 1.0, ..d() }));
     out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
-    for injection in [Injection::Texels, Injection::Voxels] {
+    for injection in [Injection::Voxels, Injection::Texels] {
         if injection != default.injection {
             out.push(v(&format!("default, injection from {}", injection.name()), GiFile { injection, ..d() }));
         }

@@ -19,7 +19,7 @@ use ash::vk;
 
 use super::radiance::RadianceVolume;
 use super::shadow::ShadowPass;
-use crate::config::{INJECT_TEXELS_PER_VOXEL, WORKGROUP_2D};
+use crate::config::WORKGROUP_2D;
 use crate::error::Result;
 use crate::gpu::{self, scope, shaders, Binding, Context, DescriptorSet, Pipeline, Sampler, Stage};
 use crate::scene::file::Injection;
@@ -57,22 +57,12 @@ pub fn injection_stride(texel: f32, voxel: f32, texels_per_voxel: f32) -> u32 {
     ((voxel / (texel * texels_per_voxel)).floor() as u32).max(1)
 }
 
-/// Whether injection runs from the voxels: as `choice` says, `Auto` where some layer's texels
-/// (`texels`: each light's layers' texel sizes at the farthest point they light, as
-/// `frame::layer_texel_sizes`) are fewer than INJECT_TEXELS_PER_VOXEL across a `voxel`. Texels
-/// that sparse miss voxels they light: at 256³ the Cornell floor's indirect light fell to 0.73 of
-/// the reference (0.92 from the voxels), while where texels are dense they do as well or better
-/// (Sponza's sun, 14-27 texels a voxel: FLIP 0.1816 against 0.187 at 128³). Never on a warped
-/// grid: its texels, up to four grid voxels deep, do not say where in them their surface lies,
-/// and a lookup at one point of the lit side saw the light where the floor before the short box
-/// lay in its shadow (its front face then gathered 1.6-1.9x the reference's indirect light).
-pub fn from_voxels(choice: Injection, texels: &[Vec<Option<f32>>], voxel: f32, warped: bool) -> bool {
-    match choice {
-        _ if warped => false,
-        Injection::Texels => false,
-        Injection::Voxels => true,
-        Injection::Auto => texels.iter().flatten().flatten().any(|&t| voxel < INJECT_TEXELS_PER_VOXEL * t),
-    }
+/// Whether injection runs from the voxels: as `choice` says, but never on a warped grid. Its
+/// texels, up to four grid voxels deep, do not say where in them their surface lies, and a
+/// lookup at one point of the lit side saw the light where the floor before the short box lay in
+/// its shadow (its front face then gathered 1.6-1.9x the reference's indirect light).
+pub fn from_voxels(choice: Injection, warped: bool) -> bool {
+    choice == Injection::Voxels && !warped
 }
 
 impl InjectPass {
@@ -204,26 +194,5 @@ impl InjectPass {
         self.resolve.bind(cmd, &[scene.set.raw, self.resolve_set.raw]);
         occupied.dispatch_or_dense(cmd, self.listed, self.dims);
         gpu::memory_barrier(ctx, cmd, w, r);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Auto injects from the voxels where some layer has fewer than INJECT_TEXELS_PER_VOXEL
-    /// texels across a voxel, never on a warped grid, and the explicit choices stand.
-    #[test]
-    fn auto_injects_from_the_voxels_where_the_texels_are_too_sparse() {
-        let voxel = 0.1;
-        let dense = vec![vec![Some(voxel / 10.0), None]];
-        let sparse = vec![vec![Some(voxel / 10.0)], vec![None, Some(voxel / 4.0)]];
-        assert!(!from_voxels(Injection::Auto, &dense, voxel, false));
-        assert!(from_voxels(Injection::Auto, &sparse, voxel, false));
-        assert!(!from_voxels(Injection::Auto, &sparse, voxel, true), "a warped grid injects from the texels");
-        assert!(!from_voxels(Injection::Auto, &[], voxel, false), "no light, no texels to miss");
-        assert!(from_voxels(Injection::Voxels, &dense, voxel, false));
-        assert!(!from_voxels(Injection::Voxels, &dense, voxel, true));
-        assert!(!from_voxels(Injection::Texels, &sparse, voxel, false));
     }
 }

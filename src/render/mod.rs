@@ -361,7 +361,7 @@ impl Renderer {
                     .collect()
             })
             .collect();
-        let from_voxels = inject::from_voxels(scene.settings.gi.injection, &texels, grid.voxel, grid.is_warped());
+        let from_voxels = inject::from_voxels(scene.settings.gi.injection, grid.is_warped());
         let inject = InjectPass::new(ctx, &scene_gpu, &shadow, &voxels, &radiance, strides, listed, from_voxels)?;
         // A fitted grid over the static scene lists the same voxels every frame.
         let fixed = options.follow.is_none() && options.clipmap.is_none();

@@ -74,14 +74,11 @@ pub enum Injection {
     /// the light grazes, or a grid finer than the map) stays dark.
     #[default]
     Texels,
-    /// Each occupied voxel looks its lit side up in the shadow map (as surface shading does, with
-    /// its PCF): the cost follows the occupied voxels. A warped grid, whose texels are not a
+    /// Each occupied voxel that is the first met from the light looks its lit side up in the
+    /// shadow map (as surface shading does, with its PCF): the cost follows the occupied voxels
+    /// (docs/benchmarks.md, "Injection from the voxels"). A warped grid, whose texels are not a
     /// voxel wide, injects from the texels.
     Voxels,
-    /// From the texels where every light's map has INJECT_TEXELS_PER_VOXEL texels across a voxel
-    /// at the farthest point it lights, else from the voxels: the model's default
-    /// (docs/benchmarks.md, "Injection from the voxels").
-    Auto,
 }
 
 impl Injection {
@@ -89,7 +86,6 @@ impl Injection {
         match self {
             Injection::Texels => "texels",
             Injection::Voxels => "voxels",
-            Injection::Auto => "auto",
         }
     }
 }
@@ -97,11 +93,16 @@ impl Injection {
 impl std::str::FromStr for Injection {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        [Injection::Texels, Injection::Voxels, Injection::Auto]
-            .into_iter()
-            .find(|i| i.name() == s)
-            .ok_or_else(|| format!("unknown injection '{s}' (auto|texels|voxels)"))
+        by_name(&[Injection::Texels, Injection::Voxels], Injection::name, "injection", s)
     }
+}
+
+/// The one of `all` whose `name` is `s`, or an error naming `what` and the choices.
+fn by_name<T: Copy>(all: &[T], name: fn(T) -> &'static str, what: &str, s: &str) -> Result<T, String> {
+    all.iter().copied().find(|&t| name(t) == s).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|&t| name(t)).collect();
+        format!("unknown {what} '{s}' ({})", names.join("|"))
+    })
 }
 
 /// Radiance mip filtering.
@@ -177,10 +178,7 @@ impl ConeSet {
 impl std::str::FromStr for ConeSet {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        ConeSet::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| format!("unknown cone set '{s}' (thesis5|thesis5-cells|crassin6|fib8|fib16|fib32)"))
+        by_name(&ConeSet::ALL, ConeSet::name, "cone set", s)
     }
 }
 
@@ -221,8 +219,7 @@ impl GiFile {
 impl Default for GiFile {
     /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
     /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
-    /// back into the receiving surface, light hidden where it faces away, eight narrow cones, and
-    /// injection from the voxels where the shadow map is too coarse for texels to find them.
+    /// back into the receiving surface, light hidden where it faces away, and eight narrow cones.
     fn default() -> Self {
         GiFile {
             steps: 256,
@@ -233,7 +230,6 @@ impl Default for GiFile {
             self_clamp: true,
             facing: true,
             area_lights: true,
-            injection: Injection::Auto,
             ..GiFile::thesis()
         }
     }

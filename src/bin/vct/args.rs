@@ -223,10 +223,10 @@ pub struct SceneArgs {
     /// Diffuse cone set: thesis5|thesis5-cells|crassin6|fib8|fib16|fib32 (overrides gi.cones).
     #[arg(long)]
     pub cones: Option<vct::scene::file::ConeSet>,
-    /// How injection finds the lit voxels: voxels (each occupied voxel looks itself up in the
-    /// shadow maps; a warped grid injects from the texels), texels (each shadow-map texel finds
-    /// its voxel; Freed 2018 Algorithm 2), or auto (texels where the maps have 8 across a voxel,
-    /// else voxels) (overrides gi.injection).
+    /// How injection finds the lit voxels: texels (each shadow-map texel finds its voxel; Freed
+    /// 2018 Algorithm 2) or voxels (each occupied voxel first met from the light looks itself up
+    /// in the shadow maps: the cost follows the voxels; a warped grid injects from the texels)
+    /// (overrides gi.injection).
     #[arg(long)]
     pub injection: Option<vct::scene::file::Injection>,
 }
