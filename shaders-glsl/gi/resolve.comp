@@ -62,7 +62,8 @@ void main() {
         return;
     }
     vec3 emission = decode_rgb9e5(imageLoad(voxel_emission, t).r);
-    uint lights = FROM_VOXELS ? 0xffu : imageLoad(lit_side, t).r >> 24;
+    // From the voxels every light is a candidate until its lookup fails.
+    uint lights = FROM_VOXELS ? (1u << uint(light_count())) - 1u : imageLoad(lit_side, t).r >> 24;
     // The lights' loop runs for no voxel of a SIMD group that none lit (a loop, not a branch: a
     // CPU driver runs a branch for every lane when any lane takes it).
     int count = lights != 0u ? light_count() : 0;
@@ -70,6 +71,7 @@ void main() {
     vec3 albedo = unpackUnorm4x8(a).rgb;
     vec3 centre = texel_centre_world(v);
     bool oriented = length(normal) > 1e-3;
+    vec3 unit = oriented ? normalize(normal) : vec3(0.0);
     vec3 reflected = vec3(0.0), brightest = vec3(0.0);
     float most = -1.0;
     for (int k = 0; k < count; k++) {
@@ -77,7 +79,7 @@ void main() {
         vec3 l;
         // The voxel's normal has no sign: the side facing the light's position (an area light
         // clips its polygon to that side's horizon).
-        vec3 n = oriented ? normalize(normal) : vec3(0.0);
+        vec3 n = unit;
         if (dot(n, frame.lights[k].position.xyz - centre) < 0.0) n = -n;
         vec3 irradiance = light_incident(k, centre, n, l);
         float cos_theta = oriented ? abs(dot(n, l)) : 1.0;
@@ -112,11 +114,10 @@ void main() {
             brightest = l;
         }
     }
-    if (FROM_VOXELS) lights &= (1u << uint(count)) - 1u;
     imageStore(target, t, vec4(emission + reflected, 1.0));
     // The lights' bits stay; a voxel with no normal keeps none of a side (lit_side.glsl).
     if (lights != 0u) {
-        vec3 side = oriented ? normalize(normal) * (dot(normal, brightest) < 0.0 ? -1.0 : 1.0) : vec3(-1.0);
+        vec3 side = oriented ? unit * (dot(normal, brightest) < 0.0 ? -1.0 : 1.0) : vec3(-1.0);
         imageStore(lit_side, t, uvec4(pack_lit_side(side, lights)));
     }
 }

@@ -351,15 +351,30 @@ impl DeferredShadePass {
         }
         let frames = self.frames.get();
         self.phase.set(self.phase.get() + 1);
-        if self.settled() {
-            // The set that wrote the history last: its output is this frame's.
-            let set = self.set.sets[((frames - 1) % 2) as usize];
-            self.shade_pipeline.bind(cmd, &[scene.set.raw]);
-            self.shade_pipeline.bind_set(cmd, 2, set);
-            timer.span(cmd, "shade pixels", || targets.dispatch_per_pixel(ctx, cmd));
-            gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
-            return;
+        let settled = self.settled();
+        // Settled, the set that wrote the history last ((frames - 1) % 2): its output is this frame's.
+        let set = self.set.sets[((frames + u64::from(settled)) % 2) as usize];
+        if !settled {
+            self.record_traced(cmd, scene, targets, timer, frames, set);
         }
+        self.shade_pipeline.bind(cmd, &[scene.set.raw]);
+        self.shade_pipeline.bind_set(cmd, 2, set);
+        timer.span(cmd, "shade pixels", || targets.dispatch_per_pixel(ctx, cmd));
+        gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
+    }
+
+    /// The reduced trace and the accumulation of a frame that traces (`frames` the frames traced
+    /// before it), into descriptor set `set`.
+    fn record_traced(
+        &self,
+        cmd: vk::CommandBuffer,
+        scene: &SceneGpu,
+        targets: &Targets,
+        timer: &GpuTimer,
+        frames: u64,
+        set: vk::DescriptorSet,
+    ) {
+        let (ctx, rw) = (&self.ctx, scope::COMPUTE_RW);
         self.frames.set(frames + 1);
         if frames == 0 {
             // No surface stored: the first frame finds no history (and every image is GENERAL).
@@ -369,7 +384,6 @@ impl DeferredShadePass {
             }
             gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, rw);
         }
-        let set = self.set.sets[(frames % 2) as usize];
         if let Some(trace) = &self.trace_pipeline {
             trace.bind(cmd, &[scene.set.raw]);
             trace.bind_set(cmd, 2, set);
@@ -384,10 +398,6 @@ impl DeferredShadePass {
             timer.span(cmd, "accumulate", || targets.dispatch_per_pixel(ctx, cmd));
             gpu::memory_barrier(ctx, cmd, rw, rw);
         }
-        self.shade_pipeline.bind(cmd, &[scene.set.raw]);
-        self.shade_pipeline.bind_set(cmd, 2, set);
-        timer.span(cmd, "shade pixels", || targets.dispatch_per_pixel(ctx, cmd));
-        gpu::memory_barrier(ctx, cmd, scope::COMPUTE_RW, scope::COMPUTE_RW);
     }
 }
 
