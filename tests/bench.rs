@@ -183,3 +183,27 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
     assert!(out.join("accuracy/accuracy-memory.png").exists() && out.join("accuracy/accuracy.png").exists());
     let _ = std::fs::remove_dir_all(out.parent().unwrap());
 }
+
+/// `vct bench --accuracy --lattices K` measures each fitted grid again on K − 1 placements of
+/// its lattice moved by under a voxel, and reports the spread of its figures with the row's own
+/// among them: a shift the renderer ignored would give every placement the same image.
+#[test]
+fn accuracy_bench_measures_the_spread_over_lattice_placements() {
+    let out = bench("lattices", &["--accuracy", "--quick", "--lattices", "3"]);
+    let csv = std::fs::read_to_string(out.join("accuracy/accuracy.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no {name}: {csv}"));
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert!(!rows.is_empty(), "{csv}");
+    for r in &rows {
+        let num = |name: &str| -> f64 { r[col(name)].parse().unwrap_or_else(|_| panic!("{name} in {r:?}")) };
+        assert_eq!(num("lattices"), 3.0, "{r:?}");
+        let (lo, mean, hi, own) =
+            (num("flip_lattice_min"), num("flip_lattice_mean"), num("flip_lattice_max"), num("flip"));
+        assert!(lo <= own && own <= hi && lo <= mean && mean <= hi, "{r:?}");
+        assert!(hi > lo, "every lattice placement gave the same image: {r:?}");
+    }
+    let summary = std::fs::read_to_string(out.join("accuracy/summary.md")).unwrap();
+    assert!(summary.contains("On other placements of the lattice") && summary.contains("over lattices"), "{summary}");
+    let _ = std::fs::remove_dir_all(out.parent().unwrap());
+}

@@ -267,3 +267,31 @@ fn res_auto_picks_a_smaller_grid_for_a_looser_target() {
     common::assert_clean(&ctx);
     let _ = std::fs::remove_dir_all(&cache);
 }
+
+/// A lattice shift (`RenderOptions::lattice`, `vct bench --accuracy --lattices`) moves the fitted
+/// grid by that share of a voxel and nothing else, the scene still inside it; more than half a
+/// voxel (its padding), a non-finite one or one for a volume following the camera is an error
+/// naming it.
+#[test]
+fn a_lattice_shift_moves_the_fitted_grid_by_under_a_voxel() {
+    use vct::render::layout::grid_for;
+    let ctx = common::context();
+    let scene = common::hall();
+    let fitted = grid_for(&ctx, &scene, &RenderOptions::default(), 64).unwrap();
+    let shift = Vec3::new(0.5, -0.25, -0.5);
+    let moved = grid_for(&ctx, &scene, &RenderOptions { lattice: Some(shift), ..Default::default() }, 64).unwrap();
+    assert_eq!((moved.dims, moved.voxel), (fitted.dims, fitted.voxel));
+    assert!((moved.origin - fitted.origin - shift * fitted.voxel).abs().max_element() < 1e-5, "{moved:?}");
+    let (b, s) = (moved.bounds(), scene.mesh.bounds);
+    assert!(b.min.cmple(s.min).all() && b.max.cmpge(s.max).all(), "{b:?} does not hold {s:?}");
+    for bad in [Vec3::new(0.0, 0.6, 0.0), Vec3::splat(f32::NAN)] {
+        let e = grid_for(&ctx, &scene, &RenderOptions { lattice: Some(bad), ..Default::default() }, 64).unwrap_err();
+        assert!(e.to_string().contains("lattice"), "{e}");
+    }
+    let follow = RenderOptions {
+        lattice: Some(Vec3::ZERO),
+        follow: Some(vct::render::Follow { extent: 4.0, snap: true }),
+        ..Default::default()
+    };
+    assert!(grid_for(&ctx, &scene, &follow, 64).unwrap_err().to_string().contains("lattice"));
+}

@@ -179,6 +179,8 @@ pub struct AccuracyRow {
     pub mean_ratio: f32,
     pub regions: Vec<RegionRow>,
     pub reference_noise: f32,
+    /// The same variant on other placements of the lattice (`measure_lattices`).
+    pub lattices: Option<LatticeSpread>,
     #[serde(skip)]
     pub flip_map: Vec<u8>,
     /// The reference's indirect light beside the renderer's (RGB8, twice as wide), tone-mapped
@@ -191,6 +193,65 @@ pub struct AccuracyRow {
     pub height: u32,
 }
 
+/// How a row's figures move when the fitted grid's lattice is moved by less than a voxel: the
+/// least, the mean and the most over the placements measured, the row's own among them.
+#[derive(Clone, Debug, Serialize)]
+pub struct LatticeSpread {
+    pub placements: u32,
+    pub flip: [f32; 3],
+    pub mean_ratio: [f32; 3],
+    /// Each region's indirect-light ratio, as `row.regions`.
+    pub region_ratio: Vec<[f32; 3]>,
+}
+
+fn spread(values: impl Iterator<Item = f32>) -> [f32; 3] {
+    let (mut lo, mut hi, mut sum, mut n) = (f32::INFINITY, f32::NEG_INFINITY, 0.0, 0.0);
+    for v in values {
+        (lo, hi, sum, n) = (lo.min(v), hi.max(v), sum + v, n + 1.0);
+    }
+    [lo, sum / f32::max(n, 1.0), hi]
+}
+
+/// The `j`-th lattice placement, in voxels: 0 for the first (the grid's own), then the
+/// additive recurrence of the plastic number in three dimensions (Roberts 2018's R3 sequence),
+/// which spreads any number of placements evenly over the cube of shifts within ±0.5.
+pub fn lattice_shift(j: u32) -> Vec3 {
+    if j == 0 {
+        return Vec3::ZERO;
+    }
+    // The generalized golden ratio of three dimensions: the positive root of x⁴ = x + 1.
+    const G: f64 = 1.220_744_084_605_759_5;
+    let r = |p: i32| ((j as f64 / G.powi(p)).fract() - 0.5) as f32;
+    Vec3::new(r(1), r(2), r(3))
+}
+
+/// Measures `variant` (a fitted grid) again on `placements - 1` more placements of its lattice
+/// and puts the spread of its figures, its own included, into `row`.
+pub fn measure_lattices(
+    ctx: &Arc<Context>,
+    j: &Judged,
+    direct: &(Vec<Vec3>, Vec<u8>),
+    variant: &Variant,
+    resolution: u32,
+    placements: u32,
+    row: &mut AccuracyRow,
+) -> Result<()> {
+    let mut rows = Vec::new();
+    for k in 1..placements {
+        let moved = Variant { lattice: Some(lattice_shift(k)), ..variant.clone() };
+        rows.push(measure(ctx, j, direct, &moved, resolution, 1)?);
+    }
+    let all = || std::iter::once(&*row).chain(rows.iter());
+    let spread_of = all().count();
+    row.lattices = Some(LatticeSpread {
+        placements: spread_of as u32,
+        flip: spread(all().map(|r| r.flip)),
+        mean_ratio: spread(all().map(|r| r.mean_ratio)),
+        region_ratio: (0..row.regions.len()).map(|i| spread(all().map(|r| r.regions[i].ratio))).collect(),
+    });
+    Ok(())
+}
+
 /// A named change to the GI model, or to how the volume spreads its voxels.
 #[derive(Clone)]
 pub struct Variant {
@@ -201,12 +262,14 @@ pub struct Variant {
     /// Clipmap levels around the camera instead of the fitted grid (`RenderOptions::clipmap`),
     /// and their voxels along each axis.
     pub clipmap: Option<(u32, u32)>,
+    /// The fitted grid's lattice moved by this many voxels (`RenderOptions::lattice`).
+    pub lattice: Option<Vec3>,
 }
 
 impl Variant {
     /// The scene's own model on its own grid.
     pub fn default_of(gi: &GiFile) -> Self {
-        Variant { name: "default".into(), gi: gi.clone(), warp: None, clipmap: None }
+        Variant { name: "default".into(), gi: gi.clone(), warp: None, clipmap: None, lattice: None }
     }
 
     /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
@@ -218,7 +281,7 @@ impl Variant {
     /// The scene's own model with the voxels warped as `warp` says (the function, §4.6.1, or the
     /// perspective, §4.6.2), at the same voxel count.
     pub fn warped_by(gi: &GiFile, warp: WarpChoice) -> Self {
-        Variant { name: warp.label(), gi: gi.clone(), warp: Some(warp), clipmap: None }
+        Variant { name: warp.label(), gi: gi.clone(), warp: Some(warp), clipmap: None, lattice: None }
     }
 
     /// `scene` with this variant's GI model, and the options that render it at `resolution`.
@@ -230,6 +293,7 @@ impl Variant {
             resolution: Some(self.clipmap.map_or(resolution, |(_, res)| res)),
             warp: self.warp,
             clipmap: self.clipmap.map(|(levels, _)| crate::render::ClipOptions { levels, extent: None }),
+            lattice: self.lattice,
             ..Default::default()
         };
         if self.warp.is_some() || self.clipmap.is_some() {
@@ -243,7 +307,13 @@ impl Variant {
     /// The scene's own model on `levels` clipmap levels of `res`³ voxels around the camera
     /// (`voxel::clipmap`, its default extent), in place of the fitted grid.
     pub fn clipped(gi: &GiFile, levels: u32, res: u32) -> Self {
-        Variant { name: format!("clipmap {levels}x{res}"), gi: gi.clone(), warp: None, clipmap: Some((levels, res)) }
+        Variant {
+            name: format!("clipmap {levels}x{res}"),
+            gi: gi.clone(),
+            warp: None,
+            clipmap: Some((levels, res)),
+            lattice: None,
+        }
     }
 }
 
@@ -335,6 +405,7 @@ pub fn measure(
         mean_ratio: mean_lum(&full) / mean_lum(&j.full).max(1e-9),
         regions,
         reference_noise: j.noise,
+        lattices: None,
         flip_map,
         indirect_pair,
         width: w,
@@ -388,7 +459,7 @@ pub fn pan_flip(ctx: &Arc<Context>, j: &Judged, variant: &Variant, resolution: u
 /// (a staircase: every row differs from the one above by one choice), the cone sets on top of
 /// the default, and the default with each of its choices undone or changed.
 pub fn study_variants(default: &GiFile) -> Vec<Variant> {
-    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi, warp: None, clipmap: None };
+    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi, warp: None, clipmap: None, lattice: None };
     // The step cap is no model choice: every variant gets the default's; nor are the lights
     // (area lights are chosen when the scene loads, and one direct frame serves all variants).
     let t =
@@ -467,15 +538,38 @@ pub fn summary(rows: &[AccuracyRow]) -> String {
             100.0 * r.reference_noise
         ));
     }
+    let spread =
+        |v: [f32; 3], digits: usize| format!("{:.*} / {:.*} / {:.*}", digits, v[0], digits, v[1], digits, v[2]);
+    if rows.iter().any(|r| r.lattices.is_some()) {
+        s.push_str(
+            "\nOn other placements of the lattice (the grid moved by under a voxel; least / mean / most, the row's own among them):\n\n| scene | variant | N | placements | FLIP | mean / reference | regions' ratios |\n|---|---|---|---|---|---|---|\n",
+        );
+        for r in rows {
+            let Some(l) = &r.lattices else { continue };
+            let lo = l.region_ratio.iter().map(|v| v[0]).fold(f32::INFINITY, f32::min);
+            let hi = l.region_ratio.iter().map(|v| v[2]).fold(f32::NEG_INFINITY, f32::max);
+            s.push_str(&format!(
+                "| {} | {} | {} | {} | {} | {} | {lo:.2}–{hi:.2} |\n",
+                r.scene,
+                r.variant,
+                r.resolution,
+                l.placements,
+                spread(l.flip, 4),
+                spread(l.mean_ratio, 3)
+            ));
+        }
+    }
     for r in rows {
+        let (head, rule) = if r.lattices.is_some() { (" over lattices |", "---|") } else { ("", "") };
         s.push_str(&format!(
-            "\nIndirect light per region, {} {} {}³ (full minus direct, linear):\n\n| region | pixels | reference | vct | ratio |\n|---|---|---|---|---|\n",
+            "\nIndirect light per region, {} {} {}³ (full minus direct, linear):\n\n| region | pixels | reference | vct | ratio |{head}\n|---|---|---|---|---|{rule}\n",
             r.scene, r.variant, r.resolution
         ));
-        for g in &r.regions {
+        for (i, g) in r.regions.iter().enumerate() {
             let f = |c: [f32; 3]| format!("{:.4} {:.4} {:.4}", c[0], c[1], c[2]);
+            let over = r.lattices.as_ref().map_or(String::new(), |l| format!(" {} |", spread(l.region_ratio[i], 2)));
             s.push_str(&format!(
-                "| {} | {} | {} | {} | {:.2} |\n",
+                "| {} | {} | {} | {} | {:.2} |{over}\n",
                 g.region,
                 g.pixels,
                 f(g.reference),
@@ -502,7 +596,7 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
         serde_json::to_string_pretty(rows).map_err(|e| Error::input(dir.join("accuracy.json"), e.to_string()))?;
     files.push(put("accuracy.json", &json)?);
     let mut csv = String::from(
-        "scene,variant,resolution,bounces,frame_ms,memory_mib,flip,flip_direct_only,mean_ratio,worst_region_ratio\n",
+        "scene,variant,resolution,bounces,frame_ms,memory_mib,flip,flip_direct_only,mean_ratio,worst_region_ratio,lattices,flip_lattice_min,flip_lattice_mean,flip_lattice_max\n",
     );
     for r in rows {
         let worst =
@@ -510,8 +604,11 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
                 .iter()
                 .map(|g| g.ratio)
                 .fold(1.0f32, |w, x| if (x - 1.0).abs() > (w - 1.0).abs() { x } else { w });
+        let lattices = r.lattices.as_ref().map_or(",,,".to_string(), |l| {
+            format!("{},{:.5},{:.5},{:.5}", l.placements, l.flip[0], l.flip[1], l.flip[2])
+        });
         csv.push_str(&format!(
-            "{},\"{}\",{},{},{:.3},{:.2},{:.5},{:.5},{:.4},{:.4}\n",
+            "{},\"{}\",{},{},{:.3},{:.2},{:.5},{:.5},{:.4},{:.4},{lattices}\n",
             r.scene,
             r.variant,
             r.resolution,

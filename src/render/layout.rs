@@ -30,12 +30,23 @@ pub fn grid_for(ctx: &Context, scene: &Scene, options: &RenderOptions, resolutio
         }
         return clipmap_grid(ctx, scene, options, c, resolution);
     }
+    if let Some(shift) = options.lattice {
+        if options.follow.is_some() || !shift.is_finite() || shift.abs().max_element() > 0.5 {
+            return Err(crate::Error::param(
+                "lattice",
+                format!("{shift} moves a fitted grid by at most half a voxel along each axis (its padding)"),
+            ));
+        }
+    }
     let grid = match (options.follow, options.dims) {
         (Some(_), Some(_)) => {
             return Err(crate::Error::param("dims", "a volume following the camera is a cube: give --res, not --dims"))
         }
         (Some(f), None) => VoxelGrid::around(scene.camera.eye, f.extent, resolution, f.snap)?,
-        (None, dims) => VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?,
+        (None, dims) => {
+            let grid = VoxelGrid::choose(&scene.mesh.bounds, resolution, dims)?;
+            VoxelGrid { origin: grid.origin + options.lattice.unwrap_or_default() * grid.voxel, ..grid }
+        }
     };
     if let (Some(crate::voxel::warp::WarpChoice::Perspective(_)), Some(_)) = (options.warp, options.follow) {
         return Err(crate::Error::param(
@@ -72,6 +83,8 @@ fn clipmap_grid(
         Some("--dims")
     } else if options.warp.is_some() {
         Some("--warp")
+    } else if options.lattice.is_some() {
+        Some("a lattice shift")
     } else {
         None
     };

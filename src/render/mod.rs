@@ -164,6 +164,11 @@ pub struct RenderOptions {
     pub warp: Option<crate::voxel::warp::WarpChoice>,
     /// Clipmap cascades around the camera instead of one grid; `None`: one grid.
     pub clipmap: Option<ClipOptions>,
+    /// The fitted grid's lattice moved by this many voxels along each axis (each within ±0.5,
+    /// which its padding holds): the same scene cut by other voxel boundaries, to measure how
+    /// far an image's accuracy depends on where the lattice falls (`vct bench --accuracy
+    /// --lattices`); `None`: centred on the scene.
+    pub lattice: Option<glam::Vec3>,
     /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
     pub inject_texels: f32,
     /// Which texels the passes over the volume visit.
@@ -218,6 +223,7 @@ impl Default for RenderOptions {
             follow: None,
             warp: None,
             clipmap: None,
+            lattice: None,
             inject_texels: crate::config::INJECT_TEXELS_PER_VOXEL,
             work: Work::default(),
             storage: Storage::default(),

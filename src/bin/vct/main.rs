@@ -582,12 +582,30 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
             let direct = accuracy::direct_frame(ctx, &judged, res)?;
             for v in &variants {
                 progress(&format!("{name} {res}³ {}", v.name));
-                let row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
+                let mut row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
                     .with_context(|| format!("measuring {name} {} at {res}³", v.name))?;
                 println!(
                     "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}",
                     name, v.name, res, row.frame_ms, row.memory_mib, row.flip, row.flip_direct_only, row.mean_ratio
                 );
+                if let (Some(k), None, None) = (args.lattices, v.warp, v.clipmap) {
+                    progress(&format!("{name} {res}³ {} on {k} lattices", v.name));
+                    accuracy::measure_lattices(ctx, &judged, &direct, v, res, k, &mut row)
+                        .with_context(|| format!("measuring {name} {} at {res}³ on other lattices", v.name))?;
+                    let l = row.lattices.as_ref().expect("just measured");
+                    println!(
+                        "{:<20} {:<34} {:>4}³ on {k} lattices: FLIP {:.4} / {:.4} / {:.4}, mean {:.3} / {:.3} / {:.3}",
+                        name,
+                        v.name,
+                        res,
+                        l.flip[0],
+                        l.flip[1],
+                        l.flip[2],
+                        l.mean_ratio[0],
+                        l.mean_ratio[1],
+                        l.mean_ratio[2]
+                    );
+                }
                 if let Some(frames) = args.pan_frames {
                     let (mean, max) = accuracy::pan_flip(ctx, &judged, v, res, frames)
                         .with_context(|| format!("panning {name} {} at {res}³", v.name))?;
