@@ -6,11 +6,13 @@
 use std::path::{Path, PathBuf};
 
 mod args;
+mod bench_args;
 
 use anyhow::{bail, Context as _, Result};
 use clap::Parser;
 
 use args::*;
+use bench_args::BenchArgs;
 
 use vct::gpu::{Context, ContextOptions, Feature, Timing};
 use vct::reference::coverage::RefGrid;

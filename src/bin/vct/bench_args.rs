@@ -1,0 +1,99 @@
+//! `vct bench`'s arguments (clap derive): the voxelizer sweep, the stability regimes, cost
+//! against occupancy and the accuracy harness against the path tracer, with their options.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use crate::args::*;
+
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Extra scenes (.toml, .obj, .gltf or .glb) besides the embedded Cornell box.
+    pub scenes: Vec<PathBuf>,
+    /// A short run for CI: Cornell at 32³ and 64³, 128×128, few frames, a 16-spp reference.
+    #[arg(long)]
+    pub quick: bool,
+    /// Redraw the charts and summary of an earlier run from DIR/results.json.
+    #[arg(long, value_name = "DIR")]
+    pub replot: Option<PathBuf>,
+    /// An earlier run's results.json, drawn beside this run's in the tess/raster ratio chart
+    /// ("before").
+    #[arg(long, value_name = "RESULTS.json")]
+    pub baseline: Option<PathBuf>,
+    /// Measure where each method fails (tessellation limit, raster cracks, small triangles,
+    /// light leaking, temporal flicker, self-illumination) instead of the speed/accuracy sweep.
+    #[arg(long)]
+    pub stability: bool,
+    /// Cost against occupancy: inject + filter time on one grid (--res, default 128) for scenes
+    /// that occupy more and more of it, over the occupied texels and over every texel.
+    #[arg(long)]
+    pub occupancy: bool,
+    /// Output folder; default bench/<date>-<device>.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Timed frames per configuration (after the warm-up).
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Reference samples per pixel.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Voxel resolutions, e.g. 64,128,256.
+    #[arg(long, value_delimiter = ',')]
+    pub res: Option<Vec<u32>>,
+    /// Also run the default voxelizer with the other storage modes the device offers (dense, the
+    /// brick pool, residency), and chart memory and frame time against FLIP per mode (on|off).
+    #[arg(long, value_enum, default_value = "on")]
+    pub compare_storage: OnOff,
+    /// Indirect light against the path tracer instead of the voxelizer sweep: FLIP, mean radiance
+    /// and per-region indirect light of the default model (the embedded Cornell box under its spot
+    /// and its directional light, plus the scenes given).
+    #[arg(long)]
+    pub accuracy: bool,
+    /// With --accuracy: every variant of the GI model study, not only the scene's own model.
+    #[arg(long, requires = "accuracy")]
+    pub study: bool,
+    /// With --accuracy: each scene also on warped grids of the same voxels, by the thesis'
+    /// function (Freed 2018 §4.6.1) and by perspective (§4.6.2), beside its fitted grid
+    /// (docs/benchmarks.md, "Warped voxels").
+    #[arg(long, requires = "accuracy", conflicts_with = "study")]
+    pub layouts: bool,
+    /// With --layouts: the warp's end slopes, e.g. 0.75,0.5,0.25 (each 0.05..=1; default: the
+    /// thesis' 0.25).
+    #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = warp_slope)]
+    pub warp_slopes: Option<Vec<f32>>,
+    /// With --layouts: the perspective warp's near-over-far texel widths, e.g. 0.5,0.25 (each
+    /// 0.05..=0.95; default: 0.25).
+    #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = perspective_ratio)]
+    pub perspective_ratios: Option<Vec<f32>>,
+    /// With --layouts: clipmaps to measure beside the fitted grid, each LEVELSxRES, e.g. 2x64,4x64
+    /// (none by default).
+    #[arg(long, requires = "layouts", value_delimiter = ',', value_parser = clip_layout)]
+    pub clipmaps: Option<Vec<(u32, u32)>>,
+    /// With --layouts: also slide each variant's camera sideways 3 cm a frame for this many
+    /// frames and report the FLIP between adjacent frames (level seams, voxels regrouping;
+    /// pan.csv).
+    #[arg(long, requires = "layouts", value_name = "FRAMES", value_parser = clap::value_parser!(u32).range(2..=240))]
+    pub pan_frames: Option<u32>,
+    /// With --accuracy: also measure each fitted grid on this many placements of its lattice in
+    /// all (its own and others moved by under a voxel), and report the spread of FLIP, mean
+    /// radiance and each region's ratio: how far the figures depend on where voxel boundaries
+    /// fall. Clipmaps and warped grids are measured once.
+    #[arg(long, requires = "accuracy", value_name = "K", value_parser = clap::value_parser!(u32).range(2..=64))]
+    pub lattices: Option<u32>,
+    /// With --study: only the variants whose name contains this text.
+    #[arg(long, requires = "study", value_name = "TEXT")]
+    pub only: Option<String>,
+    /// With --accuracy: light bounces of the renderer (overrides the scenes' gi.bounces).
+    #[arg(long, requires = "accuracy", value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub bounces: Option<u32>,
+    /// Only the scenes given, without the embedded Cornell box (and, with --accuracy, its
+    /// directional variant).
+    #[arg(long, requires = "scenes")]
+    pub given_only: bool,
+    /// With --accuracy: bounces of the path-traced reference (default: the renderer's).
+    #[arg(long, requires = "accuracy", value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub ref_bounces: Option<u32>,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
