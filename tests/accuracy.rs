@@ -111,8 +111,9 @@ fn cornell_regions_get_the_reference_indirect_light() {
 /// Injection from the voxels (`[gi] injection = "voxels"`) gives every region the reference's
 /// indirect light within the band (±20%) at 64³, as injection from the texels does; on
 /// the short box's front face, which the spot grazes, nearer the reference (measured 1.05
-/// against 1.20). At 256³ neither keeps the floor in the band (0.77 from the voxels, 0.73 from
-/// the texels; docs/benchmarks.md, "Injection from the voxels").
+/// against 1.20). At 256³ neither keeps the floor in the band on the grid's own lattice (0.77
+/// from the voxels, 0.73 from the texels; docs/benchmarks.md, "Injection from the voxels"); the
+/// texels give it 0.85 on each of five other placements ("Where the lattice falls").
 #[test]
 fn injection_from_the_voxels_keeps_every_region_in_band() {
     use vct::scene::file::Injection;
