@@ -242,9 +242,8 @@ pub fn measure_lattices(
         rows.push(measure(ctx, j, direct, &moved, resolution, 1)?);
     }
     let all = || std::iter::once(&*row).chain(rows.iter());
-    let spread_of = all().count();
     row.lattices = Some(LatticeSpread {
-        placements: spread_of as u32,
+        placements,
         flip: spread(all().map(|r| r.flip)),
         mean_ratio: spread(all().map(|r| r.mean_ratio)),
         region_ratio: (0..row.regions.len()).map(|i| spread(all().map(|r| r.regions[i].ratio))).collect(),
@@ -267,9 +266,14 @@ pub struct Variant {
 }
 
 impl Variant {
+    /// The GI model `gi`, named `name`, on the scene's fitted grid.
+    pub fn model(name: &str, gi: GiFile) -> Self {
+        Variant { name: name.into(), gi, warp: None, clipmap: None, lattice: None }
+    }
+
     /// The scene's own model on its own grid.
     pub fn default_of(gi: &GiFile) -> Self {
-        Variant { name: "default".into(), gi: gi.clone(), warp: None, clipmap: None, lattice: None }
+        Self::model("default", gi.clone())
     }
 
     /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
@@ -281,7 +285,7 @@ impl Variant {
     /// The scene's own model with the voxels warped as `warp` says (the function, §4.6.1, or the
     /// perspective, §4.6.2), at the same voxel count.
     pub fn warped_by(gi: &GiFile, warp: WarpChoice) -> Self {
-        Variant { name: warp.label(), gi: gi.clone(), warp: Some(warp), clipmap: None, lattice: None }
+        Variant { warp: Some(warp), ..Self::model(&warp.label(), gi.clone()) }
     }
 
     /// `scene` with this variant's GI model, and the options that render it at `resolution`.
@@ -307,13 +311,7 @@ impl Variant {
     /// The scene's own model on `levels` clipmap levels of `res`³ voxels around the camera
     /// (`voxel::clipmap`, its default extent), in place of the fitted grid.
     pub fn clipped(gi: &GiFile, levels: u32, res: u32) -> Self {
-        Variant {
-            name: format!("clipmap {levels}x{res}"),
-            gi: gi.clone(),
-            warp: None,
-            clipmap: Some((levels, res)),
-            lattice: None,
-        }
+        Variant { clipmap: Some((levels, res)), ..Self::model(&format!("clipmap {levels}x{res}"), gi.clone()) }
     }
 }
 
@@ -459,7 +457,7 @@ pub fn pan_flip(ctx: &Arc<Context>, j: &Judged, variant: &Variant, resolution: u
 /// (a staircase: every row differs from the one above by one choice), the cone sets on top of
 /// the default, and the default with each of its choices undone or changed.
 pub fn study_variants(default: &GiFile) -> Vec<Variant> {
-    let v = |name: &str, gi: GiFile| Variant { name: name.into(), gi, warp: None, clipmap: None, lattice: None };
+    let v = Variant::model;
     // The step cap is no model choice: every variant gets the default's; nor are the lights
     // (area lights are chosen when the scene loads, and one direct frame serves all variants).
     let t =
