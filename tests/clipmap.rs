@@ -100,6 +100,49 @@ fn levels_agree_with_the_fitted_grid_where_the_finest_holds_the_room() {
     assert!((gain_clip / gain_fitted - 1.0).abs() < 0.03, "bounces: clipmap {gain_clip:.4}x, fitted {gain_fitted:.4}x");
 }
 
+/// A moved lattice (`RenderOptions::lattice`; `vct bench --accuracy --lattices`) moves every
+/// level alike: moved by a quarter of a shift in voxels of the coarsest of three levels, level 0
+/// lies on the lattice of the fitted grid moved by the whole shift (the voxels of the test
+/// above), off the unmoved one, and renders what that moved fitted grid renders.
+#[test]
+fn a_moved_lattice_moves_every_level_alike() {
+    let ctx = common::context();
+    let scene = inside();
+    let voxel = 5.5 / 30.0;
+    let shift = Vec3::new(0.37, -0.29, 0.18);
+    let fitted = RenderOptions { dims: Some(glam::UVec3::splat(32)), ..options(32, View::Full) };
+    let moved = RenderOptions { lattice: Some(shift), ..fitted.clone() };
+    let clip = RenderOptions { lattice: Some(shift / 4.0), ..clipped(3, 64, Some(64.0 * voxel), View::Full) };
+    let grid = |o: &RenderOptions, res: u32| vct::render::layout::grid_for(&ctx, &scene, o, res).unwrap();
+    let levels = grid(&clip, 64).clip.unwrap();
+    // Each level's corner in voxels of the fitted grid from its corner: whole voxels on the moved
+    // lattice (the shaders find a level in whole voxels of level 0 from level 0's corner).
+    let on = |origin: Vec3, of: &RenderOptions| (origin - grid(of, 32).origin) / voxel;
+    for k in 0..3 {
+        let at = on(levels.origins[k], &moved);
+        assert!((at - at.round()).abs().max_element() < 1e-3, "level {k} is off the moved lattice: {at}");
+    }
+    let unmoved = on(levels.origins[0], &fitted);
+    assert!((unmoved - unmoved.round()).abs().min_element() > 0.1, "level 0 stayed on the unmoved lattice: {unmoved}");
+    let three = render(&scene, clip);
+    let (d_moved, d_unmoved) = (
+        common::difference(&three, &render(&scene, moved), |_| true),
+        common::difference(&three, &render(&scene, fitted), |_| true),
+    );
+    println!(
+        "three levels on a moved lattice against the fitted grid moved alike: {d_moved:.4}; unmoved: {d_unmoved:.4}"
+    );
+    assert!(
+        d_moved < 0.06,
+        "three levels differ from the fitted grid on their lattice by {d_moved:.4} of its radiance"
+    );
+    assert!(
+        d_moved < 0.5 * d_unmoved,
+        "the levels render the unmoved grid's image as closely ({d_unmoved:.4}) as the moved one's"
+    );
+    common::assert_clean(&ctx);
+}
+
 /// Where the finest level holds only the camera's surroundings, the room's indirect light comes
 /// from the coarser levels: it must still be there, near the fitted grid's, and not the dark of
 /// a cone that found nothing.

@@ -160,7 +160,17 @@ pub struct RegionRow {
     pub vct: [f32; 3],
     /// Luminance ratio vct / reference.
     pub ratio: f32,
+    /// Whether the ratio is judged (the worst region, the lattices' range): the region's
+    /// reference indirect light is at least `JUDGED_SHARE` of the brightest region's. A region
+    /// the reference leaves nearly dark (a face seen edge-on, a recess no bounce reaches) has a
+    /// ratio of noise over nearly nothing: one of Sponza's read 10⁶.
+    pub judged: bool,
 }
+
+/// The least share of the brightest region's indirect light at which a region's ratio is
+/// judged (`RegionRow::judged`). Every region of both Cornell boxes holds 10% or more; the
+/// regions it leaves out hold under 0.3%.
+pub const JUDGED_SHARE: f32 = 0.01;
 
 /// One variant on one scene.
 #[derive(Clone, Debug, Serialize)]
@@ -193,7 +203,8 @@ pub struct AccuracyRow {
     pub height: u32,
 }
 
-/// How a row's figures move when the fitted grid's lattice is moved by less than a voxel: the
+/// How a row's figures move when its lattice is moved by less than a voxel (a fitted grid's, or
+/// a clipmap's by less than a voxel of its coarsest level, `Clipmap::on_lattice`): the
 /// least, the mean and the most over the placements measured, the row's own among them.
 #[derive(Clone, Debug, Serialize)]
 pub struct LatticeSpread {
@@ -225,7 +236,7 @@ pub fn lattice_shift(j: u32) -> Vec3 {
     Vec3::new(r(1), r(2), r(3))
 }
 
-/// Measures `variant` (a fitted grid) again on `placements - 1` more placements of its lattice
+/// Measures `variant` (a fitted grid or a clipmap) again on `placements - 1` more placements of its lattice
 /// and puts the spread of its figures, its own included, into `row`.
 pub fn measure_lattices(
     ctx: &Arc<Context>,
@@ -261,7 +272,8 @@ pub struct Variant {
     /// Clipmap levels around the camera instead of the fitted grid (`RenderOptions::clipmap`),
     /// and their voxels along each axis.
     pub clipmap: Option<(u32, u32)>,
-    /// The fitted grid's lattice moved by this many voxels (`RenderOptions::lattice`).
+    /// The lattice moved by this many voxels (a clipmap's: of its coarsest level;
+    /// `RenderOptions::lattice`).
     pub lattice: Option<Vec3>,
 }
 
@@ -378,6 +390,7 @@ pub fn measure(
         c[*r] += 1;
         c
     });
+    let brightest = ref_ind.iter().map(|&c| lum(c)).fold(0.0f32, f32::max);
     let regions = j
         .regions
         .labels
@@ -389,6 +402,7 @@ pub fn measure(
             reference: ref_ind[i].into(),
             vct: vct_ind[i].into(),
             ratio: lum(vct_ind[i]) / lum(ref_ind[i]).max(1e-9),
+            judged: lum(ref_ind[i]) >= JUDGED_SHARE * brightest,
         })
         .collect();
     Ok(AccuracyRow {
@@ -540,12 +554,13 @@ pub fn summary(rows: &[AccuracyRow]) -> String {
         |v: [f32; 3], digits: usize| format!("{:.*} / {:.*} / {:.*}", digits, v[0], digits, v[1], digits, v[2]);
     if rows.iter().any(|r| r.lattices.is_some()) {
         s.push_str(
-            "\nOn other placements of the lattice (the grid moved by under a voxel; least / mean / most, the row's own among them):\n\n| scene | variant | N | placements | FLIP | mean / reference | regions' ratios |\n|---|---|---|---|---|---|---|\n",
+            "\nOn other placements of the lattice (moved by under a voxel, a clipmap's of its coarsest level; least / mean / most, the row's own among them):\n\n| scene | variant | N | placements | FLIP | mean / reference | judged regions' ratios |\n|---|---|---|---|---|---|---|\n",
         );
         for r in rows {
             let Some(l) = &r.lattices else { continue };
-            let lo = l.region_ratio.iter().map(|v| v[0]).fold(f32::INFINITY, f32::min);
-            let hi = l.region_ratio.iter().map(|v| v[2]).fold(f32::NEG_INFINITY, f32::max);
+            let judged = || l.region_ratio.iter().zip(&r.regions).filter(|(_, g)| g.judged).map(|(v, _)| v);
+            let lo = judged().map(|v| v[0]).fold(f32::INFINITY, f32::min);
+            let hi = judged().map(|v| v[2]).fold(f32::NEG_INFINITY, f32::max);
             s.push_str(&format!(
                 "| {} | {} | {} | {} | {} | {} | {lo:.2}–{hi:.2} |\n",
                 r.scene,
@@ -566,8 +581,9 @@ pub fn summary(rows: &[AccuracyRow]) -> String {
         for (i, g) in r.regions.iter().enumerate() {
             let f = |c: [f32; 3]| format!("{:.4} {:.4} {:.4}", c[0], c[1], c[2]);
             let over = r.lattices.as_ref().map_or(String::new(), |l| format!(" {} |", spread(l.region_ratio[i], 2)));
+            let judged = if g.judged { "" } else { " (not judged: nearly dark in the reference)" };
             s.push_str(&format!(
-                "| {} | {} | {} | {} | {:.2} |{over}\n",
+                "| {} | {} | {} | {} | {:.2}{judged} |{over}\n",
                 g.region,
                 g.pixels,
                 f(g.reference),
@@ -597,11 +613,13 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
         "scene,variant,resolution,bounces,frame_ms,memory_mib,flip,flip_direct_only,mean_ratio,worst_region_ratio,lattices,flip_lattice_min,flip_lattice_mean,flip_lattice_max\n",
     );
     for r in rows {
-        let worst =
-            r.regions
-                .iter()
-                .map(|g| g.ratio)
-                .fold(1.0f32, |w, x| if (x - 1.0).abs() > (w - 1.0).abs() { x } else { w });
+        let worst = r.regions.iter().filter(|g| g.judged).map(|g| g.ratio).fold(1.0f32, |w, x| {
+            if (x - 1.0).abs() > (w - 1.0).abs() {
+                x
+            } else {
+                w
+            }
+        });
         let lattices = r.lattices.as_ref().map_or(",,,".to_string(), |l| {
             format!("{},{:.5},{:.5},{:.5}", l.placements, l.flip[0], l.flip[1], l.flip[2])
         });

@@ -83,8 +83,6 @@ fn clipmap_grid(
         Some("--dims")
     } else if options.warp.is_some() {
         Some("--warp")
-    } else if options.lattice.is_some() {
-        Some("a lattice shift")
     } else {
         None
     };
@@ -96,7 +94,10 @@ fn clipmap_grid(
     }
     let bounds = &scene.mesh.bounds;
     let extent = c.extent.unwrap_or_else(|| Clipmap::default_extent(bounds, resolution, c.levels));
-    let clip = Clipmap::around(scene.camera.eye, extent, resolution, c.levels, Some(bounds))?;
+    let mut clip = Clipmap::around(scene.camera.eye, extent, resolution, c.levels, Some(bounds))?;
+    if let Some(shift) = options.lattice {
+        clip = clip.on_lattice(scene.camera.eye, shift)?;
+    }
     let grid = clip.stack_grid();
     let max = ctx.info.limits.max_image_dimension3_d;
     if grid.dims.z > max {

@@ -165,9 +165,10 @@ pub struct RenderOptions {
     /// Clipmap cascades around the camera instead of one grid; `None`: one grid.
     pub clipmap: Option<ClipOptions>,
     /// The fitted grid's lattice moved by this many voxels along each axis (each within ±0.5,
-    /// which its padding holds): the same scene cut by other voxel boundaries, to measure how
+    /// which its padding holds), or a clipmap's levels by this many voxels of the coarsest
+    /// (`Clipmap::on_lattice`): the same scene cut by other voxel boundaries, to measure how
     /// far an image's accuracy depends on where the lattice falls (`vct bench --accuracy
-    /// --lattices`); `None`: centred on the scene.
+    /// --lattices`); `None`: centred on the scene (a clipmap: on the world's lattice).
     pub lattice: Option<glam::Vec3>,
     /// Shadow-map texels injection reads across a voxel (0: every texel of the map).
     pub inject_texels: f32,

@@ -67,6 +67,11 @@ pub struct Clipmap {
     pub origins: [Vec3; MAX_LEVELS as usize],
     /// The scene's bounds the levels stay in (None: they follow the centre wherever it goes).
     pub scene: Option<crate::scene::Aabb>,
+    /// Where the levels' lattices start (world units): every level's corner lies on its step
+    /// lattice through this point, so the levels stay whole voxels of level 0 apart. Zero by
+    /// default; `on_lattice` moves it by under a voxel of the coarsest level, to measure how far
+    /// an image depends on where the voxel boundaries fall (`vct bench --accuracy --lattices`).
+    pub lattice: Vec3,
 }
 
 impl Clipmap {
@@ -103,9 +108,26 @@ impl Clipmap {
             voxel0: extent0 / res as f32,
             origins: [Vec3::ZERO; MAX_LEVELS as usize],
             scene: scene.copied(),
+            lattice: Vec3::ZERO,
         };
         c.recentre(centre);
         Ok(c)
+    }
+
+    /// The same levels with their lattices moved by `shift` voxels of the coarsest level (each
+    /// within ±0.5), placed again around `centre`: the coarsest moves by the shift (it keeps half
+    /// a voxel to spare and a voxel for its lattice, `default_extent`), each finer level by
+    /// `shift · 2^(levels-1-k)` of its own voxels, a different fraction of a voxel at each level.
+    pub fn on_lattice(mut self, centre: Vec3, shift: Vec3) -> Result<Self> {
+        if !shift.is_finite() || shift.abs().max_element() > 0.5 {
+            return Err(Error::param(
+                "lattice",
+                format!("{shift} moves clipmap levels by at most half a voxel of the coarsest along each axis"),
+            ));
+        }
+        self.lattice = shift * self.voxel(self.levels - 1);
+        self.recentre(centre);
+        Ok(self)
     }
 
     /// Moves every level to `centre` in steps of its own (`step`), and then (with the scene's
@@ -113,12 +135,16 @@ impl Clipmap {
     /// than the scene, to a place that holds the scene, where it stays: a level holding all of
     /// the scene along an axis gains nothing by following the camera along it.
     pub fn recentre(&mut self, centre: Vec3) {
+        // Placed in coordinates whose origin is the lattice's, then moved back.
+        let o = self.lattice;
         for k in 0..self.levels {
             let (v, s, e) = (self.voxel(k), self.step(k), self.extent(k));
-            let follow = ((centre - Vec3::splat(0.5 * e)) / s).floor() * s;
-            self.origins[k as usize] = match self.scene {
+            let follow = ((centre - o - Vec3::splat(0.5 * e)) / s).floor() * s;
+            self.origins[k as usize] = o + match self.scene {
                 None => follow,
-                Some(b) => Vec3::from_array(std::array::from_fn(|a| place(follow[a], b.min[a], b.max[a], v, s, e))),
+                Some(b) => Vec3::from_array(std::array::from_fn(|a| {
+                    place(follow[a], b.min[a] - o[a], b.max[a] - o[a], v, s, e)
+                })),
             };
         }
     }
@@ -287,14 +313,27 @@ mod tests {
     /// Wherever the camera is (inside the hall, near its ends, beyond it), the coarsest level
     /// holds the whole hall; every level lies inside the hall or holds it along each axis, with
     /// less than a voxel (plus the half voxel to spare) beyond it; the levels still nest; and a
-    /// face is open exactly when it lies beyond the hall.
+    /// face is open exactly when it lies beyond the hall. The same holds with the lattices moved
+    /// by under a voxel of the coarsest (`on_lattice`), each level's corner then on its own
+    /// voxel lattice through the moved origin and whole voxels of level 0 from level 0's.
     #[test]
     fn levels_stay_in_the_scene_and_nest() {
         let b = hall();
         let e = Clipmap::default_extent(&b, 32, 4);
-        let mut c = Clipmap::around(Vec3::ZERO, e, 32, 4, Some(&b)).unwrap();
-        for eye in cameras() {
-            c.recentre(eye);
+        let shifts = [Vec3::ZERO, Vec3::new(0.31, -0.47, 0.12), Vec3::new(-0.5, 0.5, 0.23)];
+        for (eye, shift) in cameras().zip(shifts.iter().cycle()) {
+            let c = Clipmap::around(Vec3::ZERO, e, 32, 4, Some(&b)).unwrap().on_lattice(eye, *shift).unwrap();
+            assert_eq!(c.lattice, *shift * c.voxel(3));
+            let (_, levels, _) = c.gpu();
+            for k in 0..4 {
+                let on = (c.origins[k as usize] - c.lattice) / c.voxel(k);
+                assert!((on - on.round()).abs().max_element() < 1e-3, "{eye} {shift}: level {k} off its lattice: {on}");
+                let back = c.origins[0] + levels[k as usize].truncate() * c.voxel0;
+                assert!(
+                    (back - c.origins[k as usize]).abs().max_element() < 1e-3 * c.voxel0,
+                    "{eye} {shift}: level {k}"
+                );
+            }
             let top = c.level_grid(3).bounds();
             assert!(top.min.cmple(b.min).all() && top.max.cmpge(b.max).all(), "{eye}: {top:?}");
             for k in 0..4 {
@@ -322,6 +361,7 @@ mod tests {
         }
         // A camera in the middle of the hall sees the levels centred on it (Wicked Engine's
         // placement), its finest level closed on every side.
+        let mut c = Clipmap::around(Vec3::ZERO, e, 32, 4, Some(&b)).unwrap();
         c.recentre(Vec3::new(0.0, 7.5, 0.0));
         let fine = c.level_grid(0).bounds();
         assert!(((fine.min + fine.max) * 0.5 - Vec3::new(0.0, 7.5, 0.0)).abs().max_element() <= c.step(0));
@@ -356,6 +396,10 @@ mod tests {
         assert!(Clipmap::around(Vec3::ZERO, 4.0, 48, 4, None).unwrap_err().to_string().contains("res"));
         assert!(Clipmap::around(Vec3::ZERO, 4.0, 32, 0, None).unwrap_err().to_string().contains("clipmap"));
         assert!(Clipmap::around(Vec3::ZERO, f32::NAN, 32, 4, None).unwrap_err().to_string().contains("clipmap"));
+        let c = Clipmap::around(Vec3::ZERO, 4.0, 32, 4, None).unwrap();
+        for bad in [Vec3::new(0.0, 0.6, 0.0), Vec3::splat(f32::NAN)] {
+            assert!(c.on_lattice(Vec3::ZERO, bad).unwrap_err().to_string().contains("lattice"), "{bad}");
+        }
         let empty = crate::scene::Aabb::EMPTY;
         assert!(Clipmap::around(Vec3::ZERO, 4.0, 32, 4, Some(&empty)).unwrap_err().to_string().contains("bounds"));
     }

@@ -75,10 +75,11 @@ pub struct BenchArgs {
     /// pan.csv).
     #[arg(long, requires = "layouts", value_name = "FRAMES", value_parser = clap::value_parser!(u32).range(2..=240))]
     pub pan_frames: Option<u32>,
-    /// With --accuracy: also measure each fitted grid on this many placements of its lattice in
-    /// all (its own and others moved by under a voxel), and report the spread of FLIP, mean
-    /// radiance and each region's ratio: how far the figures depend on where voxel boundaries
-    /// fall. Clipmaps and warped grids are measured once.
+    /// With --accuracy: also measure each fitted grid and clipmap on this many placements of its
+    /// lattice in all (its own and others moved by under a voxel; a clipmap's by under a voxel of
+    /// its coarsest level), and report the spread of FLIP, mean radiance and each region's
+    /// ratio: how far the figures depend on where voxel boundaries fall. Warped grids are
+    /// measured once.
     #[arg(long, requires = "accuracy", value_name = "K", value_parser = clap::value_parser!(u32).range(2..=64))]
     pub lattices: Option<u32>,
     /// With --study: only the variants whose name contains this text.

@@ -590,7 +590,7 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
                     "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}",
                     name, v.name, res, row.frame_ms, row.memory_mib, row.flip, row.flip_direct_only, row.mean_ratio
                 );
-                if let (Some(k), None, None) = (args.lattices, v.warp, v.clipmap) {
+                if let (Some(k), None) = (args.lattices, v.warp) {
                     progress(&format!("{name} {res}³ {} on {k} lattices", v.name));
                     accuracy::measure_lattices(ctx, &judged, &direct, v, res, k, &mut row)
                         .with_context(|| format!("measuring {name} {} at {res}³ on other lattices", v.name))?;
