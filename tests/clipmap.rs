@@ -111,7 +111,7 @@ fn a_moved_lattice_moves_every_level_alike() {
     let voxel = 5.5 / 30.0;
     let shift = Vec3::new(0.37, -0.29, 0.18);
     let fitted = RenderOptions { dims: Some(glam::UVec3::splat(32)), ..options(32, View::Full) };
-    let moved = RenderOptions { lattice: Some(shift), ..fitted.clone() };
+    let moved = RenderOptions { lattice: Some(shift), ..fitted };
     let clip = RenderOptions { lattice: Some(shift / 4.0), ..clipped(3, 64, Some(64.0 * voxel), View::Full) };
     let grid = |o: &RenderOptions, res: u32| vct::render::layout::grid_for(&ctx, &scene, o, res).unwrap();
     let levels = grid(&clip, 64).clip.unwrap();

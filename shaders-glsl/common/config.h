@@ -96,6 +96,8 @@
 // Narrowest specular cone (full aperture, radians): as wide as the GGX lobe (common/shading.glsl,
 // specular_aperture), never below this.
 #define MIN_SPECULAR_APERTURE 0.02
+// Samples of the GGX lobe that weigh the specular cone's light (common/brdf.glsl, ggx_albedo).
+#define SPECULAR_ALBEDO_SAMPLES 64
 // Debug views (FrameUniforms.view.x).
 // The viewer's on-screen overlay (post/overlay.comp): a block of text cells, each an 8x8 glyph
 // times the overlay's scale, this far from the window's corner (pixels).

@@ -91,7 +91,8 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
         vec3 f0 = specular_f0(m, albedo);
         if (VCT_SPECULAR && max(f0.r, max(f0.g, f0.b)) > 0.0) {
             vec3 c = specular_given ? specular_in : specular_cone(m, uvw, n, v, p);
-            specular = fresnel_schlick(f0, dot(n, v)) * c;
+            vec2 e = ggx_albedo(dot(n, v), roughness);
+            specular = (e.x + f0 * e.y) * c;
         }
     }
 
