@@ -31,7 +31,7 @@ pub fn grid_for(ctx: &Context, scene: &Scene, options: &RenderOptions, resolutio
         return clipmap_grid(ctx, scene, options, c, resolution);
     }
     if let Some(shift) = options.lattice {
-        if options.follow.is_some() || !shift.is_finite() || shift.abs().max_element() > 0.5 {
+        if options.follow.is_some() || !crate::voxel::grid::lattice_shift_fits(shift) {
             return Err(crate::Error::param(
                 "lattice",
                 format!("{shift} moves a fitted grid by at most half a voxel along each axis (its padding)"),

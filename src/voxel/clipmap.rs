@@ -119,7 +119,7 @@ impl Clipmap {
     /// a voxel to spare and a voxel for its lattice, `default_extent`), each finer level by
     /// `shift · 2^(levels-1-k)` of its own voxels, a different fraction of a voxel at each level.
     pub fn on_lattice(mut self, centre: Vec3, shift: Vec3) -> Result<Self> {
-        if !shift.is_finite() || shift.abs().max_element() > 0.5 {
+        if !super::grid::lattice_shift_fits(shift) {
             return Err(Error::param(
                 "lattice",
                 format!("{shift} moves clipmap levels by at most half a voxel of the coarsest along each axis"),

@@ -20,6 +20,13 @@ use crate::scene::Aabb;
 pub const MIN_RESOLUTION: u32 = 16;
 pub const MAX_RESOLUTION: u32 = 512;
 
+/// Whether `shift` (voxels along each axis) moves a lattice by at most half a voxel: a fitted
+/// grid's (its one voxel of padding holds it) or a clipmap's, in voxels of its coarsest level
+/// (`Clipmap::on_lattice`). `RenderOptions::lattice`, `vct bench --accuracy --lattices`.
+pub fn lattice_shift_fits(shift: Vec3) -> bool {
+    shift.is_finite() && shift.abs().max_element() <= 0.5
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VoxelGrid {
     /// World position of the grid's minimum corner.
