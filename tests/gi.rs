@@ -90,6 +90,8 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
     assert!(lit_sides > 100, "injection should record the lit side of the lit voxels ({lit_sides})");
     // A child seen by a cone travelling along `dir` shows its light only where the lit side faces
     // the cone (soft edge over dot(n, dir) in [0, 1/4]).
+    let side =
+        |s: u32| Vec3::new((s & 0xff) as f32, ((s >> 8) & 0xff) as f32, ((s >> 16) & 0xff) as f32) / 255.0 * 2.0 - 1.0;
     let texel = |x: usize, y: usize, z: usize, dir: Vec3| {
         let i = x + 16 * (y + 16 * z);
         let t = Vec4::from_slice(&base[4 * i..][..4]);
@@ -97,10 +99,32 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
         if s >> 24 == 0 {
             return t;
         }
-        let n = Vec3::new((s & 0xff) as f32, ((s >> 8) & 0xff) as f32, ((s >> 16) & 0xff) as f32) / 255.0 * 2.0 - 1.0;
-        (t.truncate() * (1.0 - 4.0 * n.dot(dir)).clamp(0.0, 1.0)).extend(t.w)
+        (t.truncate() * (1.0 - 4.0 * side(s).dot(dir)).clamp(0.0, 1.0)).extend(t.w)
+    };
+    // A dark, unlit child behind a lit neighbour's face across the chain's axis is the far voxel
+    // of a surface on a voxel face, which edge-on adds no thickness: empty in that chain.
+    let behind_lit_face = |c: [usize; 3], axis: usize| {
+        let i = c[0] + 16 * (c[1] + 16 * c[2]);
+        let t = Vec4::from_slice(&base[4 * i..][..4]);
+        if sides[i] >> 24 != 0 || t.w <= 0.0 || t.truncate() != Vec3::ZERO {
+            return false;
+        }
+        [(axis + 1) % 3, (axis + 2) % 3].into_iter().any(|b| {
+            [-1i32, 1].into_iter().any(|s| {
+                let mut nb = c.map(|v| v as i32);
+                nb[b] += s;
+                if nb.iter().any(|&v| !(0..16).contains(&v)) {
+                    return false;
+                }
+                let n = sides[(nb[0] + 16 * (nb[1] + 16 * nb[2])) as usize];
+                let l = side(n);
+                let most = l.abs().max_element();
+                n >> 24 != 0 && n & 0xff_ffff != 0 && l[b] * s as f32 > 0.0 && l[b].abs() >= most
+            })
+        })
     };
     let mut hidden = 0;
+    let mut behind = 0;
     // The six chains share one atlas, stacked along one axis with empty separators between them.
     let atlas = f16s(&gpu::read_image(&ctx, &r.radiance.aniso, vk::ImageLayout::GENERAL, 0).unwrap());
     let layout = r.radiance.atlas;
@@ -131,7 +155,15 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
                         let mut c2 = c;
                         c2[axis] += 1;
                         let (near, far) = if positive { (c, c2) } else { (c2, c) };
-                        let (n, f) = (texel(near[0], near[1], near[2], dir), texel(far[0], far[1], far[2], dir));
+                        let seen = |c: [usize; 3]| {
+                            if behind_lit_face(c, axis) {
+                                Vec4::ZERO
+                            } else {
+                                texel(c[0], c[1], c[2], dir)
+                            }
+                        };
+                        behind += behind_lit_face(near, axis) as usize + behind_lit_face(far, axis) as usize;
+                        let (n, f) = (seen(near), seen(far));
                         let unweighted = texel(near[0], near[1], near[2], Vec3::ZERO);
                         hidden += (unweighted.truncate() != n.truncate()) as usize;
                         sum += n + (1.0 - n.w) * f;
@@ -159,6 +191,8 @@ fn anisotropic_level_one_composites_front_to_back_along_each_axis() {
         .any(|c| atlas[4 * (c[0] + width * (c[1] + height * c[2]))..][..4].iter().any(|&v| v != 0.0));
     assert!(!dirty, "a separator of the directional atlas was written");
     assert!(hidden > 100, "lit faces seen from behind should be dark ({hidden} children hidden)");
+    // The room's walls lie on voxel faces at 16³ (the fitted grid's padding is a whole voxel).
+    assert!(behind > 20, "the far voxels of the lit walls should be empty edge-on ({behind} children)");
     drop(r);
     common::assert_clean(&ctx);
 }

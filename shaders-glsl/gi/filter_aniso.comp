@@ -8,6 +8,18 @@
 // side faces (inject.comp records it): a Lambertian face reflects into its own hemisphere, so
 // a wall lit on one side is opaque and dark seen from the other, even where its voxel is the
 // only one (the radiance-level counterpart of the thesis' §6 anisotropic voxels).
+// A surface lying on a voxel face is written into the voxels of both its sides
+// (voxelize/raster.frag: a thin wall keeps its light on its side), and injection lights only the
+// one on the light's side; the other holds the surface from behind, dark. Face-on it is hidden
+// behind the lit voxel, or hides it from the dark side, which is what it is there for. But the
+// chains that see the face edge-on average the two side by side: the far voxel doubled the
+// surface's thickness and halved its light (radiance r/2 at opacity 1 in a parent, against r/2
+// at 1/2 for a surface inside one layer), so a cone grazing a lit wall gathered half its light.
+// So, building level 1, a dark unlit child behind a lit neighbour's face counts as empty in the
+// chains along that face: the surface is one voxel thick edge-on wherever it lies. Measured
+// (docs/benchmarks.md, "Resolution"): the Cornell spot's floor at 256³, whose walls the fitted
+// grid puts on voxel faces, 0.73 -> 0.85 of the reference's indirect light, as on every lattice
+// moved by under a voxel; Sponza's three views within 0.0003 FLIP.
 // The chains live in one atlas (render::radiance::AtlasLayout): each reads and writes its own
 // block, stacked along one axis.
 #include "config.h"
@@ -28,7 +40,8 @@ layout(constant_id = 0) const bool LISTED = false;
 // direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0
 // (stored as the per-voxel targets, like lit_side);
 // axis: the one the atlas stacks its chains along; src_at, dst_at: where the chain starts along
-// it in src and dst (texels); size: the level's extent.
+// it in src and dst (texels); size: the level's extent; slab: a clipmap level's extent along z
+// at level 0, the levels stacked along z (0: one grid).
 layout(push_constant) uniform Push {
     uint direction;
     uint base;
@@ -36,12 +49,34 @@ layout(push_constant) uniform Push {
     uint src_at;
     uint dst_at;
     uint size_x, size_y, size_z;
+    uint slab;
 } push;
 
 // The texel of the chain's block at `v` (the chain starting at `at` along the stacking axis).
 ivec3 in_block(ivec3 v, uint at) {
     v[push.axis] += int(at);
     return v;
+}
+
+// Whether level-0 voxel `v` lies behind a lit face across an axis other than `axis`: a
+// neighbour there is lit, and its lit side looks away from `v` along that axis more than along
+// any other.
+bool behind_lit_face(ivec3 v, int axis) {
+    ivec3 grid = stored_grid(imageSize(lit_side));
+    for (int k = 1; k <= 2; k++) {
+        for (int s = -1; s <= 1; s += 2) {
+            ivec3 d = ivec3(0);
+            d[(axis + k) % 3] = s;
+            ivec3 nb = v + d;
+            if (any(lessThan(nb, ivec3(0))) || any(greaterThanEqual(nb, grid))) continue;
+            if (push.slab != 0u && nb.z / int(push.slab) != v.z / int(push.slab)) continue;  // another level
+            uint side = imageLoad(lit_side, stored_at(nb)).r;
+            vec3 n = abs(lit_side_of(side));
+            if (has_lit_side(side) && dot(lit_side_of(side), vec3(d)) > 0.0 && n[(axis + k) % 3] >= max(n.x, max(n.y, n.z)))
+                return true;
+        }
+    }
+    return false;
 }
 
 // The child at `v` as seen by a cone travelling along `dir`: its light only where the light
@@ -52,6 +87,9 @@ vec4 child(ivec3 v, vec3 dir, ivec3 first) {
     if (push.base == 0u) return imageLoad(src, in_block(v, push.src_at));
     vec4 c = imageLoad(src, first + (v & 1));
     uint side = imageLoad(lit_side, first + (v & 1)).r;
+    // The far voxel of a surface on a voxel face: edge-on it adds no thickness (header).
+    if ((side >> 24) == 0u && c.a > 0.0 && max(c.r, max(c.g, c.b)) == 0.0 && behind_lit_face(v, int(push.direction / 2u)))
+        return vec4(0.0);
     if (!has_lit_side(side)) return c;
     vec3 n = lit_side_of(side);
     return vec4(c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), c.a);

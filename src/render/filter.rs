@@ -44,6 +44,8 @@ pub struct FilterPass {
     /// Clear what the listed dispatches leave unwritten each frame (not where the occupied set
     /// is fixed: see TemporalBlend::new).
     clear: bool,
+    /// A clipmap level's extent along z, its levels stacked along z (0: one grid).
+    slab: u32,
 }
 
 // A listed dispatch has one WORKGROUP_1D-sized group per WORKGROUP_1D listed texels, and the
@@ -143,7 +145,7 @@ impl FilterPass {
             "anisotropic mip filter",
             Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&stored),
             &[aniso_sets.layout],
-            32,
+            36,
         )?;
         Ok(FilterPass {
             ctx: ctx.clone(),
@@ -158,6 +160,7 @@ impl FilterPass {
             levels: volume.levels,
             parents,
             clear: listed && !fixed,
+            slab: voxels.grid.clip.map_or(0, |c| c.res),
         })
     }
 
@@ -239,7 +242,7 @@ impl FilterPass {
                     let dst = self.offsets[d][level as usize - 1];
                     let size = volume.atlas.chain_at(level - 1);
                     let axis = volume.atlas.axis as u32;
-                    let push = [d as u32, (level == 1) as u32, axis, src, dst, size.x, size.y, size.z];
+                    let push = [d as u32, (level == 1) as u32, axis, src, dst, size.x, size.y, size.z, self.slab];
                     self.aniso_pipeline.push(cmd, &push);
                     self.dispatch_level(cmd, level, occupied);
                 }
