@@ -90,16 +90,21 @@ fn region_ratios_on(gi: GiFile, res: u32, warp: Option<WarpChoice>) -> Vec<(Stri
     map.labels.iter().enumerate().map(|(i, l)| (l.clone(), sizes[i], lum(got[i]) / lum(want[i]).max(1e-9))).collect()
 }
 
+/// Prints each region's ratio (`region_ratios`) and asserts that enough regions were judged and
+/// that each lies in `band`; `what` names the case.
+fn assert_regions_in(ratios: &[(String, usize, f32)], band: std::ops::RangeInclusive<f32>, what: &str) {
+    for (label, pixels, r) in ratios {
+        println!("{label:<28} {pixels:>5} px  indirect vct / reference {r:.3} ({what})");
+    }
+    assert!(ratios.len() >= 7, "too few regions to judge ({what}): {ratios:?}");
+    for (label, _, r) in ratios {
+        assert!(band.contains(r), "{label}: indirect light {r:.3} of the reference's ({what})");
+    }
+}
+
 #[test]
 fn cornell_regions_get_the_reference_indirect_light() {
-    let ratios = region_ratios(GiFile::default(), 64);
-    for (label, pixels, r) in &ratios {
-        println!("{label:<28} {pixels:>5} px  indirect vct / reference {r:.3}");
-    }
-    assert!(ratios.len() >= 7, "too few regions to judge: {ratios:?}");
-    for (label, _, r) in &ratios {
-        assert!((0.7..=1.4).contains(r), "{label}: indirect light {r:.3} of the reference's");
-    }
+    assert_regions_in(&region_ratios(GiFile::default(), 64), 0.7..=1.4, "64³");
     // The thesis' model (isotropic 8-child averages, five 45° cones) leaves the ceiling, lit only
     // from far below, with a few per cent of its light.
     let thesis = region_ratios(GiFile::thesis(), 64);
@@ -117,14 +122,7 @@ fn cornell_regions_get_the_reference_indirect_light() {
 /// (gi/filter_aniso.comp), and every region lies in the band at 256³.
 #[test]
 fn a_wall_on_a_voxel_face_gives_a_grazing_cone_all_its_light() {
-    let ratios = region_ratios(GiFile::default(), 256);
-    for (label, pixels, r) in &ratios {
-        println!("{label:<28} {pixels:>5} px  indirect vct / reference {r:.3} (256³)");
-    }
-    assert!(ratios.len() >= 7, "too few regions to judge: {ratios:?}");
-    for (label, _, r) in &ratios {
-        assert!((0.8..=1.2).contains(r), "{label}: indirect light {r:.3} of the reference's at 256³");
-    }
+    assert_regions_in(&region_ratios(GiFile::default(), 256), 0.8..=1.2, "256³");
 }
 
 /// Injection from the voxels (`[gi] injection = "voxels"`) gives every region the reference's
@@ -140,10 +138,7 @@ fn injection_from_the_voxels_keeps_every_region_in_band() {
     for ((label, _, v), (_, _, t)) in ratios.iter().zip(&texels) {
         println!("{label:<28} from the voxels {v:.3}, from the texels {t:.3}");
     }
-    assert!(ratios.len() >= 7, "too few regions to judge: {ratios:?}");
-    for (label, _, v) in &ratios {
-        assert!((0.8..=1.2).contains(v), "{label}: indirect light {v:.3} of the reference's");
-    }
+    assert_regions_in(&ratios, 0.8..=1.2, "64³, from the voxels");
 }
 
 #[test]
@@ -162,15 +157,7 @@ fn a_warped_grid_keeps_the_regions_indirect_light() {
 /// Asserts that on a grid warped by `warp` every region's indirect light (Cornell 64³) lies
 /// within `band` of the reference's.
 fn warped_regions_within(warp: WarpChoice, band: std::ops::RangeInclusive<f32>) {
-    let ratios = region_ratios_on(GiFile::default(), 64, Some(warp));
-    let name = warp.label();
-    for (label, pixels, r) in &ratios {
-        println!("{name}: {label:<28} {pixels:>5} px  indirect vct / reference {r:.3}");
-    }
-    assert!(ratios.len() >= 7, "too few regions to judge: {ratios:?}");
-    for (label, _, r) in &ratios {
-        assert!(band.contains(r), "{name}, {label}: indirect light {r:.3} of the reference's");
-    }
+    assert_regions_in(&region_ratios_on(GiFile::default(), 64, Some(warp)), band, &warp.label());
 }
 
 #[test]
