@@ -64,16 +64,16 @@ ivec3 in_block(ivec3 v, uint at) {
 bool behind_lit_face(ivec3 v, int axis) {
     ivec3 grid = stored_grid(imageSize(lit_side));
     for (int k = 1; k <= 2; k++) {
+        int b = (axis + k) % 3;
         for (int s = -1; s <= 1; s += 2) {
-            ivec3 d = ivec3(0);
-            d[(axis + k) % 3] = s;
-            ivec3 nb = v + d;
+            ivec3 nb = v;
+            nb[b] += s;
             if (any(lessThan(nb, ivec3(0))) || any(greaterThanEqual(nb, grid))) continue;
             if (push.slab != 0u && nb.z / int(push.slab) != v.z / int(push.slab)) continue;  // another level
             uint side = imageLoad(lit_side, stored_at(nb)).r;
-            vec3 n = abs(lit_side_of(side));
-            if (has_lit_side(side) && dot(lit_side_of(side), vec3(d)) > 0.0 && n[(axis + k) % 3] >= max(n.x, max(n.y, n.z)))
-                return true;
+            if (!has_lit_side(side)) continue;
+            vec3 n = lit_side_of(side), m = abs(n);
+            if (n[b] * float(s) > 0.0 && m[b] >= max(m.x, max(m.y, m.z))) return true;
         }
     }
     return false;
