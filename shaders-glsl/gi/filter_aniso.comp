@@ -20,6 +20,9 @@
 // (docs/benchmarks.md, "Resolution"): the Cornell spot's floor at 256³, whose walls the fitted
 // grid puts on voxel faces, 0.73 -> 0.85 of the reference's indirect light, as on every lattice
 // moved by under a voxel; Sponza's three views within 0.0003 FLIP.
+// Level 1 builds all six chains in one invocation a parent: each child is read, and searched
+// for a lit face beside it, once rather than once a chain (the search had made the pass five
+// times as long on Sponza; docs/benchmarks.md, "Resolution").
 // The chains live in one atlas (render::radiance::AtlasLayout): each reads and writes its own
 // block, stacked along one axis.
 #include "config.h"
@@ -38,7 +41,8 @@ layout(set = 0, binding = 2, r32ui) uniform readonly uimage3D lit_side;
 // One invocation per occupied texel of the level (as filter.comp).
 layout(constant_id = 0) const bool LISTED = false;
 // direction: the way the cone travels, 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; base: src is level 0
-// (stored as the per-voxel targets, like lit_side);
+// (stored as the per-voxel targets, like lit_side), and every direction is built, direction d's
+// block starting at base_at[d] (direction and dst_at unused);
 // axis: the one the atlas stacks its chains along; src_at, dst_at: where the chain starts along
 // it in src and dst (texels); size: the level's extent; slab: a clipmap level's extent along z
 // at level 0, the levels stacked along z (0: one grid).
@@ -50,6 +54,7 @@ layout(push_constant) uniform Push {
     uint dst_at;
     uint size_x, size_y, size_z;
     uint slab;
+    uint base_at[6];
 } push;
 
 // The texel of the chain's block at `v` (the chain starting at `at` along the stacking axis).
@@ -58,13 +63,13 @@ ivec3 in_block(ivec3 v, uint at) {
     return v;
 }
 
-// Whether level-0 voxel `v` lies behind a lit face across an axis other than `axis`: a
+// The axes across which level-0 voxel `v` lies behind a lit face (bit b: across axis b): a
 // neighbour there is lit, and its lit side looks away from `v` along that axis more than along
 // any other.
-bool behind_lit_face(ivec3 v, int axis) {
+uint lit_faces_beside(ivec3 v) {
     ivec3 grid = stored_grid(imageSize(lit_side));
-    for (int k = 1; k <= 2; k++) {
-        int b = (axis + k) % 3;
+    uint across = 0u;
+    for (int b = 0; b < 3; b++) {
         for (int s = -1; s <= 1; s += 2) {
             ivec3 nb = v;
             nb[b] += s;
@@ -73,45 +78,106 @@ bool behind_lit_face(ivec3 v, int axis) {
             uint side = imageLoad(lit_side, stored_at(nb)).r;
             if (!has_lit_side(side)) continue;
             vec3 n = lit_side_of(side), m = abs(n);
-            if (n[b] * float(s) > 0.0 && m[b] >= max(m.x, max(m.y, m.z))) return true;
+            if (n[b] * float(s) > 0.0 && m[b] >= max(m.x, max(m.y, m.z))) across |= 1u << b;
         }
     }
-    return false;
+    return across;
 }
 
-// The child at `v` as seen by a cone travelling along `dir`: its light only where the light
-// leaves towards the cone (against `dir`), with a soft edge for grazing normals. `first`: where
-// the parent's first child (its even corner) is stored; its 2³ children share one brick, so
-// they lie next to it (bricks.glsl), and the page table is read once a parent.
-vec4 child(ivec3 v, vec3 dir, ivec3 first) {
-    if (push.base == 0u) return imageLoad(src, in_block(v, push.src_at));
-    vec4 c = imageLoad(src, first + (v & 1));
-    uint side = imageLoad(lit_side, first + (v & 1)).r;
-    // The far voxel of a surface on a voxel face: edge-on it adds no thickness (header).
-    if ((side >> 24) == 0u && c.a > 0.0 && max(c.r, max(c.g, c.b)) == 0.0 && behind_lit_face(v, int(push.direction / 2u)))
-        return vec4(0.0);
-    if (!has_lit_side(side)) return c;
-    vec3 n = lit_side_of(side);
-    return vec4(c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), c.a);
+// One child of a level-1 parent: its light, lit side, and the axes whose chains leave it out
+// (the far voxel of a surface on a voxel face: edge-on it adds no thickness; header).
+struct Child {
+    vec4 c;
+    uint side;
+    uint empty_along;  // bit a: empty in the chains along axis a
+};
+
+// Child `k` (offset (k & 1, k >> 1 & 1, k >> 2)) of parent `v`, whose first child (its even
+// corner) is stored at `first`: its 2³ children share one brick, so they lie next to it
+// (bricks.glsl), and the page table is read once a parent.
+Child base_child(ivec3 v, int k, ivec3 first) {
+    ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
+    Child ch;
+    ch.c = imageLoad(src, first + o);
+    ch.side = imageLoad(lit_side, first + o).r;
+    ch.empty_along = 0u;
+    if ((ch.side >> 24) == 0u && ch.c.a > 0.0 && max(ch.c.r, max(ch.c.g, ch.c.b)) == 0.0) {
+        // Behind a lit face across axis b: empty in the chains along the two other axes.
+        uint across = lit_faces_beside(2 * v + o);
+        for (int a = 0; a < 3; a++)
+            if ((across & ~(1u << a)) != 0u) ch.empty_along |= 1u << a;
+    }
+    return ch;
+}
+
+// A level-1 child as seen by a cone travelling along `dir` (on `axis`): its light only where the
+// light leaves towards the cone (against `dir`), with a soft edge for grazing normals.
+vec4 seen(Child ch, int axis, vec3 dir) {
+    if ((ch.empty_along & (1u << axis)) != 0u) return vec4(0.0);
+    if (!has_lit_side(ch.side)) return ch.c;
+    vec3 n = lit_side_of(ch.side);
+    return vec4(ch.c.rgb * clamp(1.0 - 4.0 * dot(n, dir), 0.0, 1.0), ch.c.a);
+}
+
+// The chain travelling along `direction`: its axis, its unit direction, its step between a
+// column's two children, and the two axes its 2 x 2 columns spread over.
+void chain_frame(int direction, out int axis, out bool positive, out vec3 dir, out ivec3 step, out ivec3 u,
+                 out ivec3 w) {
+    axis = direction / 2;
+    positive = (direction & 1) == 0;
+    step = ivec3(0);
+    step[axis] = 1;
+    dir = vec3(step) * (positive ? 1.0 : -1.0);
+    u = ivec3(0);
+    w = ivec3(0);
+    u[(axis + 1) % 3] = 1;
+    w[(axis + 2) % 3] = 1;
+}
+
+// Child index of offset `o` in the parent's 2³.
+int index_of(ivec3 o) {
+    return o.x + 2 * o.y + 4 * o.z;
+}
+
+// Level 1 of all six chains from level 0.
+void filter_base(ivec3 v) {
+    ivec3 first = stored_at(2 * v);
+    Child children[8];
+    for (int k = 0; k < 8; k++) children[k] = base_child(v, k, first);
+    for (int d = 0; d < 6; d++) {
+        int axis;
+        bool positive;
+        vec3 dir;
+        ivec3 step, u, w;
+        chain_frame(d, axis, positive, dir, step, u, w);
+        vec4 sum = vec4(0.0);
+        for (int i = 0; i < 4; i++) {
+            ivec3 base = u * (i & 1) + w * (i >> 1);
+            vec4 near = seen(children[index_of(positive ? base : base + step)], axis, dir);
+            vec4 far = seen(children[index_of(positive ? base + step : base)], axis, dir);
+            sum += near + (1.0 - near.a) * far;
+        }
+        imageStore(dst, in_block(v, push.base_at[d]), sum * 0.25);
+    }
 }
 
 void main() {
     ivec3 v;
     if (!listed_or_dense(LISTED, ivec3(push.size_x, push.size_y, push.size_z), v)) return;
-    int axis = int(push.direction / 2u);
-    bool positive = (push.direction & 1u) == 0u;
-    ivec3 step = ivec3(0);
-    step[axis] = 1;
-    vec3 dir = vec3(step) * (positive ? 1.0 : -1.0);
-    ivec3 u = ivec3(0), w = ivec3(0);
-    u[(axis + 1) % 3] = 1;
-    w[(axis + 2) % 3] = 1;
+    if (push.base != 0u) {
+        filter_base(v);
+        return;
+    }
+    int axis;
+    bool positive;
+    vec3 dir;
+    ivec3 step, u, w;
+    chain_frame(int(push.direction), axis, positive, dir, step, u, w);
     vec4 sum = vec4(0.0);
-    ivec3 first = push.base != 0u ? stored_at(2 * v) : ivec3(0);
     for (int i = 0; i < 4; i++) {
         ivec3 base = 2 * v + u * (i & 1) + w * (i >> 1);
-        vec4 near = child(positive ? base : base + step, dir, first);
-        vec4 far = child(positive ? base + step : base, dir, first);
+        vec4 near = imageLoad(src, in_block(positive ? base : base + step, push.src_at));
+        vec4 far = imageLoad(src, in_block(positive ? base + step : base, push.src_at));
         sum += near + (1.0 - near.a) * far;
     }
     imageStore(dst, in_block(v, push.dst_at), sum * 0.25);

@@ -145,7 +145,7 @@ impl FilterPass {
             "anisotropic mip filter",
             Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&stored),
             &[aniso_sets.layout],
-            36,
+            60,
         )?;
         Ok(FilterPass {
             ctx: ctx.clone(),
@@ -235,14 +235,23 @@ impl FilterPass {
             gpu::memory_barrier(&self.ctx, cmd, w, r);
         }
         if anisotropic {
+            let axis = volume.atlas.axis as u32;
             for level in 1..self.levels {
                 self.aniso_pipeline.bind(cmd, &[self.aniso_sets.sets[level as usize - 1]]);
-                for d in 0..6 {
-                    let src = if level == 1 { 0 } else { self.offsets[d][level as usize - 2] };
-                    let dst = self.offsets[d][level as usize - 1];
-                    let size = volume.atlas.chain_at(level - 1);
-                    let axis = volume.atlas.axis as u32;
-                    let push = [d as u32, (level == 1) as u32, axis, src, dst, size.x, size.y, size.z, self.slab];
+                let size = volume.atlas.chain_at(level - 1);
+                let m = level as usize - 1;
+                // Level 1: one dispatch builds every chain (gi/filter_aniso.comp, filter_base).
+                let directions = if level == 1 { 0..1 } else { 0..6 };
+                for d in directions {
+                    let src = if level == 1 { 0 } else { self.offsets[d][m - 1] };
+                    let head = [d as u32, (level == 1) as u32, axis, src, self.offsets[d][m], size.x, size.y, size.z, self.slab];
+                    let mut push = [0u32; 15];
+                    push[..9].copy_from_slice(&head);
+                    if level == 1 {
+                        for (at, chain) in push[9..].iter_mut().zip(&self.offsets) {
+                            *at = chain[0];
+                        }
+                    }
                     self.aniso_pipeline.push(cmd, &push);
                     self.dispatch_level(cmd, level, occupied);
                 }
