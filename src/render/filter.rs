@@ -244,7 +244,17 @@ impl FilterPass {
                 let directions = if level == 1 { 0..1 } else { 0..6 };
                 for d in directions {
                     let src = if level == 1 { 0 } else { self.offsets[d][m - 1] };
-                    let head = [d as u32, (level == 1) as u32, axis, src, self.offsets[d][m], size.x, size.y, size.z, self.slab];
+                    let head = [
+                        d as u32,
+                        (level == 1) as u32,
+                        axis,
+                        src,
+                        self.offsets[d][m],
+                        size.x,
+                        size.y,
+                        size.z,
+                        self.slab,
+                    ];
                     let mut push = [0u32; 15];
                     push[..9].copy_from_slice(&head);
                     if level == 1 {
