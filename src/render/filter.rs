@@ -48,6 +48,21 @@ pub struct FilterPass {
     slab: u32,
 }
 
+/// gi/filter_aniso.comp's push constants (its `Push` block, field for field).
+#[repr(C)]
+#[derive(Clone, Copy, Default, bytemuck::Pod, bytemuck::Zeroable)]
+struct AnisoPush {
+    direction: u32,
+    /// 1: level 1, every chain from level 0 (`base_at`); 0: one chain's level from the one below.
+    base: u32,
+    axis: u32,
+    src_at: u32,
+    dst_at: u32,
+    size: [u32; 3],
+    slab: u32,
+    base_at: [u32; 6],
+}
+
 // A listed dispatch has one WORKGROUP_1D-sized group per WORKGROUP_1D listed texels, and the
 // filters' groups are WORKGROUP_3D³.
 const _: () = assert!(WORKGROUP_3D * WORKGROUP_3D * WORKGROUP_3D == crate::config::WORKGROUP_1D);
@@ -145,7 +160,7 @@ impl FilterPass {
             "anisotropic mip filter",
             Stage::new(c, shaders::GI_FILTER_ANISO_COMP).spec(&stored),
             &[aniso_sets.layout],
-            60,
+            std::mem::size_of::<AnisoPush>() as u32,
         )?;
         Ok(FilterPass {
             ctx: ctx.clone(),
@@ -243,25 +258,16 @@ impl FilterPass {
                 // Level 1: one dispatch builds every chain (gi/filter_aniso.comp, filter_base).
                 let directions = if level == 1 { 0..1 } else { 0..6 };
                 for d in directions {
-                    let src = if level == 1 { 0 } else { self.offsets[d][m - 1] };
-                    let head = [
-                        d as u32,
-                        (level == 1) as u32,
+                    let push = AnisoPush {
+                        direction: d as u32,
+                        base: (level == 1) as u32,
                         axis,
-                        src,
-                        self.offsets[d][m],
-                        size.x,
-                        size.y,
-                        size.z,
-                        self.slab,
-                    ];
-                    let mut push = [0u32; 15];
-                    push[..9].copy_from_slice(&head);
-                    if level == 1 {
-                        for (at, chain) in push[9..].iter_mut().zip(&self.offsets) {
-                            *at = chain[0];
-                        }
-                    }
+                        src_at: if level == 1 { 0 } else { self.offsets[d][m - 1] },
+                        dst_at: self.offsets[d][m],
+                        size: size.into(),
+                        slab: self.slab,
+                        base_at: std::array::from_fn(|c| if level == 1 { self.offsets[c][0] } else { 0 }),
+                    };
                     self.aniso_pipeline.push(cmd, &push);
                     self.dispatch_level(cmd, level, occupied);
                 }
