@@ -2,6 +2,8 @@
 //! charts, with the expected columns and one row per configuration, the point voxelizer's
 //! density sweep among them.
 
+use vct::bench::accuracy::{region_log_error, RegionRow};
+
 /// Runs `vct bench ARGS --validation --out DIR/run` in a fresh temporary DIR; returns DIR/run
 /// once it succeeded.
 fn bench(name: &str, args: &[&str]) -> std::path::PathBuf {
@@ -174,6 +176,8 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
         let num = |name: &str| -> f64 { r[col(name)].parse().unwrap() };
         assert!(num("memory_mib") > 0.0 && num("frame_ms") > 0.0, "{r:?}");
         assert!((0.0..1.0).contains(&num("flip")) && num("flip") > 0.0, "{r:?}");
+        // Every region of the embedded Cornell boxes is judged, none matched exactly.
+        assert!(num("region_log_error") > 0.0 && num("region_log_error").is_finite(), "{r:?}");
     }
     // The warp changes the image: its FLIP is not the fitted grid's.
     for r in rows.chunks(4) {
@@ -206,4 +210,24 @@ fn accuracy_bench_measures_the_spread_over_lattice_placements() {
     let summary = std::fs::read_to_string(out.join("accuracy/summary.md")).unwrap();
     assert!(summary.contains("On other placements of the lattice") && summary.contains("over lattices"), "{summary}");
     let _ = std::fs::remove_dir_all(out.parent().unwrap());
+}
+
+fn region(pixels: usize, ratio: f32, judged: bool) -> RegionRow {
+    RegionRow { region: String::new(), pixels, reference: [1.0; 3], vct: [ratio; 3], ratio, judged }
+}
+
+/// The regions' figure in the accuracy bench's summary and CSV (`region_log_error`): the mean
+/// |ln ratio| over the judged regions' pixels.
+#[test]
+fn region_log_error_counts_too_dark_and_too_bright_alike_by_pixels() {
+    assert_eq!(region_log_error(&[region(10, 1.0, true), region(5, 1.0, true)]), Some(0.0));
+    // Half and twice the reference's light, in regions of 3 and 1 pixels: ln 2 either way.
+    let e = region_log_error(&[region(3, 0.5, true), region(1, 2.0, true)]).unwrap();
+    assert!((e - std::f32::consts::LN_2).abs() < 1e-6, "{e}");
+    // Pixel-weighted: a large exact region dilutes a small wrong one.
+    let e = region_log_error(&[region(3, 1.0, true), region(1, 2.0, true)]).unwrap();
+    assert!((e - std::f32::consts::LN_2 / 4.0).abs() < 1e-6, "{e}");
+    // Regions that are not judged (nearly dark in the reference) do not count.
+    assert_eq!(region_log_error(&[region(3, 1.0, true), region(100, 1e6, false)]), Some(0.0));
+    assert_eq!(region_log_error(&[region(100, 1e6, false)]), None);
 }

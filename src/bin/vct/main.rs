@@ -586,8 +586,9 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
                 progress(&format!("{name} {res}³ {}", v.name));
                 let mut row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
                     .with_context(|| format!("measuring {name} {} at {res}³", v.name))?;
+                let regions = accuracy::region_log_error_text(&row.regions);
                 println!(
-                    "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}",
+                    "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}  regions |ln| {regions}",
                     name, v.name, res, row.frame_ms, row.memory_mib, row.flip, row.flip_direct_only, row.mean_ratio
                 );
                 if let (Some(k), None) = (args.lattices, v.warp) {
