@@ -2,7 +2,7 @@
 //! charts, with the expected columns and one row per configuration, the point voxelizer's
 //! density sweep among them.
 
-use vct::bench::accuracy::{region_log_error, RegionRow};
+use vct::bench::accuracy::{distance_bands, region_log_error, RegionRow};
 
 /// Runs `vct bench ARGS --validation --out DIR/run` in a fresh temporary DIR; returns DIR/run
 /// once it succeeded.
@@ -178,6 +178,10 @@ fn accuracy_bench_compares_layouts_at_the_same_voxels() {
         assert!((0.0..1.0).contains(&num("flip")) && num("flip") > 0.0, "{r:?}");
         // Every region of the embedded Cornell boxes is judged, none matched exactly.
         assert!(num("region_log_error") > 0.0 && num("region_log_error").is_finite(), "{r:?}");
+        // FLIP over the thirds by distance: each a mean of per-pixel errors, not all alike.
+        let thirds = [num("flip_near"), num("flip_middle"), num("flip_far")];
+        assert!(thirds.iter().all(|f| (0.0..1.0).contains(f) && *f > 0.0), "{r:?}");
+        assert!(thirds[0] != thirds[1] || thirds[1] != thirds[2], "{r:?}");
     }
     // The warp changes the image: its FLIP is not the fitted grid's.
     for r in rows.chunks(4) {
@@ -230,4 +234,24 @@ fn region_log_error_counts_too_dark_and_too_bright_alike_by_pixels() {
     // Regions that are not judged (nearly dark in the reference) do not count.
     assert_eq!(region_log_error(&[region(3, 1.0, true), region(100, 1e6, false)]), Some(0.0));
     assert_eq!(region_log_error(&[region(100, 1e6, false)]), None);
+}
+
+/// The accuracy bench's thirds by distance (`distance_bands`): equal in pixels, nearest first,
+/// pixels that see no surface in none.
+#[test]
+fn distance_bands_split_the_surface_pixels_into_equal_thirds() {
+    let mut d: Vec<Option<f32>> = [5.0, 1.0, 9.0, 2.0, 7.0, 3.0, 8.0, 4.0, 6.0, 10.0, 11.0, 12.0].map(Some).to_vec();
+    d.insert(2, None);
+    d.insert(7, None);
+    let (band, edges) = distance_bands(&d);
+    let count = |k: u8| band.iter().filter(|b| **b == Some(k)).count();
+    assert_eq!((count(0), count(1), count(2)), (4, 4, 4), "{band:?}");
+    assert_eq!(edges, [5.0, 9.0]);
+    for (d, b) in d.iter().zip(&band) {
+        match (d, b) {
+            (None, None) => {}
+            (Some(d), Some(b)) => assert_eq!(*b, (*d >= 5.0) as u8 + (*d >= 9.0) as u8, "{d}"),
+            _ => panic!("{d:?} in {b:?}"),
+        }
+    }
 }

@@ -26,10 +26,16 @@ pub fn rmse(a: &[Vec3], b: &[Vec3]) -> f64 {
 /// Mean FLIP error of `test` against `reference` (both 8-bit RGB, same size) and the error map
 /// coloured with the magma map (RGB8).
 pub fn flip(reference: &[u8], test: &[u8], width: u32, height: u32) -> (f32, Vec<u8>) {
+    let (mean, colour, _) = flip_values(reference, test, width, height);
+    (mean, colour)
+}
+
+/// `flip`, and each pixel's FLIP error besides (row-major).
+pub fn flip_values(reference: &[u8], test: &[u8], width: u32, height: u32) -> (f32, Vec<u8>, Vec<f32>) {
     let r = nv_flip::FlipImageRgb8::with_data(width, height, reference);
     let t = nv_flip::FlipImageRgb8::with_data(width, height, test);
     let map = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
     let mean = nv_flip::FlipPool::from_image(&map).mean();
     let colour = map.apply_color_lut(&nv_flip::magma_lut()).to_vec();
-    (mean, colour)
+    (mean, colour, map.to_vec())
 }

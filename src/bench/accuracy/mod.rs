@@ -2,20 +2,21 @@
 //! (and caches) a reference with as many bounces as the renderer's frame and a direct-light-only
 //! reference, splits the image into regions from a G-buffer of the reference's own primary hits
 //! (material, normal and plane: one region per wall, box face or floor), and for every model
-//! variant measures the frame's GPU time beside its accuracy — FLIP, the image's mean radiance
-//! over the reference's, and each region's indirect light (full minus direct, on both sides)
-//! over the reference's. The study's variants are the model choices the docs chart.
+//! variant measures the frame's GPU time beside its accuracy — FLIP (over the image, and over
+//! thirds of it by distance from the camera), the image's mean radiance over the reference's, and
+//! each region's indirect light (full minus direct, on both sides) over the reference's. The
+//! study's variants are the model choices the docs chart. `report` writes what it measured.
 
 use crate::voxel::warp::WarpChoice;
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use glam::Vec3;
 use serde::Serialize;
 
 use super::reference_cached;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::gpu::{timer::median, Context};
 use crate::reference::metrics;
 use crate::reference::pathtrace::{PathTracer, PrimaryHit};
@@ -23,6 +24,9 @@ use crate::render::{RenderOptions, Renderer, View};
 use crate::scene::file::{ConeSet, Filter, GiFile, Injection, LevelRule};
 use crate::scene::Scene;
 use crate::voxel::{Coverage, VoxelizeMethod};
+
+mod report;
+pub use report::{summary, write};
 
 const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
@@ -120,8 +124,26 @@ pub struct Judged {
     /// reflected light of area-light emitters).
     pub direct: Vec<Vec3>,
     pub regions: RegionMap,
+    /// Each pixel's third of the surface the camera sees, by distance (`distance_bands`).
+    pub distance_band: Vec<Option<u8>>,
+    /// The distances (m) that part the thirds.
+    pub distance_edges: [f32; 2],
     pub noise: f32,
     pub bounces: u32,
+}
+
+/// Splits the pixels that see a surface into thirds by its distance from the camera, equal in
+/// pixels: 0 near, 1 middle, 2 far (None: no surface). Returns each pixel's third and the two
+/// distances that part them. A camera among a large scene's near detail and far walls
+/// (issue "detail where the camera is") is judged in each third: a layout that spends its voxels
+/// near the camera should gain in the near third and may pay in the far one.
+pub fn distance_bands(distance: &[Option<f32>]) -> (Vec<Option<u8>>, [f32; 2]) {
+    let mut sorted: Vec<f32> = distance.iter().flatten().copied().collect();
+    sorted.sort_by(f32::total_cmp);
+    let at = |q: usize| sorted.get(q * sorted.len() / 3).copied().unwrap_or(f32::INFINITY);
+    let edges = [at(1), at(2)];
+    let band = distance.iter().map(|d| d.map(|d| (d >= edges[0]) as u8 + (d >= edges[1]) as u8)).collect();
+    (band, edges)
 }
 
 impl Judged {
@@ -137,13 +159,19 @@ impl Judged {
         // Direct light as the renderer counts it: an area light's reflection is direct.
         let area = scene.lights.iter().any(|l| l.is_mesh_emitter());
         let (direct, _) = reference_cached(&scene, name, 0, area, spp.min(64), cache, progress)?;
-        let regions = regions(&scene, &PathTracer::new(&scene).primary_hits(), 0.004);
+        let hits = PathTracer::new(&scene).primary_hits();
+        let regions = regions(&scene, &hits, 0.004);
+        let distance: Vec<Option<f32>> =
+            hits.iter().map(|h| h.as_ref().map(|h| h.position.distance(scene.camera.eye))).collect();
+        let (distance_band, distance_edges) = distance_bands(&distance);
         Ok(Judged {
             name: name.into(),
             full_rgb: metrics::tonemap(&full),
             full,
             direct,
             regions,
+            distance_band,
+            distance_edges,
             noise: info.relative_noise,
             scene,
             bounces,
@@ -204,6 +232,11 @@ pub struct AccuracyRow {
     pub flip_direct_only: f32,
     /// Mean radiance (luminance) over the reference's.
     pub mean_ratio: f32,
+    /// Mean FLIP over each third of the surface pixels by distance from the camera (near, middle,
+    /// far; `Judged::distance_band`).
+    pub flip_by_distance: [f32; 3],
+    /// The distances (m) that part the thirds.
+    pub distance_edges: [f32; 2],
     pub regions: Vec<RegionRow>,
     pub reference_noise: f32,
     /// The same variant on other placements of the lattice (`measure_lattices`).
@@ -390,7 +423,14 @@ pub fn measure(
     let (scene, options) = variant.setup(&j.scene, resolution);
     let (ms, full, rgb, memory) = render_timed(ctx, &scene, options, frames)?;
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let (flip, flip_map) = metrics::flip(&j.full_rgb, &rgb, w, h);
+    let (flip, flip_map, per_pixel) = metrics::flip_values(&j.full_rgb, &rgb, w, h);
+    let mut by_distance = [(0.0f32, 0usize); 3];
+    for (v, b) in per_pixel.iter().zip(&j.distance_band) {
+        if let Some(b) = b {
+            by_distance[*b as usize].0 += v;
+            by_distance[*b as usize].1 += 1;
+        }
+    }
     let (flip_direct_only, _) = metrics::flip(&j.full_rgb, &direct.1, w, h);
     let indirect = |f: &[Vec3], d: &[Vec3]| -> Vec<Vec3> { f.iter().zip(d).map(|(a, b)| *a - *b).collect() };
     let (ref_img, vct_img) = (indirect(&j.full, &j.direct), indirect(&full, &direct.0));
@@ -432,6 +472,8 @@ pub fn measure(
         flip,
         flip_direct_only,
         mean_ratio: mean_lum(&full) / mean_lum(&j.full).max(1e-9),
+        flip_by_distance: by_distance.map(|(s, n)| s / n.max(1) as f32),
+        distance_edges: j.distance_edges,
         regions,
         reference_noise: j.noise,
         lattices: None,
@@ -544,138 +586,4 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
         }
     }
     out
-}
-
-/// Markdown tables of the rows: the summary per scene and variant, then each row's regions.
-pub fn summary(rows: &[AccuracyRow]) -> String {
-    let mut s = String::from(
-        "| scene | variant | N | bounces | frame ms | memory MiB | FLIP | direct-only FLIP | FLIP / direct-only | mean / reference | regions' \\|ln ratio\\| | reference noise |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-    );
-    for r in rows {
-        let regions = region_log_error_text(&r.regions);
-        s.push_str(&format!(
-            "| {} | {} | {} | {} | {:.1} | {:.1} | {:.3} | {:.3} | {:.0}% | {:.3} | {regions} | {:.2}% |\n",
-            r.scene,
-            r.variant,
-            r.resolution,
-            r.bounces,
-            r.frame_ms,
-            r.memory_mib,
-            r.flip,
-            r.flip_direct_only,
-            100.0 * r.flip / r.flip_direct_only.max(1e-9),
-            r.mean_ratio,
-            100.0 * r.reference_noise
-        ));
-    }
-    let spread =
-        |v: [f32; 3], digits: usize| format!("{:.*} / {:.*} / {:.*}", digits, v[0], digits, v[1], digits, v[2]);
-    if rows.iter().any(|r| r.lattices.is_some()) {
-        s.push_str(
-            "\nOn other placements of the lattice (moved by under a voxel, a clipmap's of its coarsest level; least / mean / most, the row's own among them):\n\n| scene | variant | N | placements | FLIP | mean / reference | judged regions' ratios |\n|---|---|---|---|---|---|---|\n",
-        );
-        for r in rows {
-            let Some(l) = &r.lattices else { continue };
-            let judged = || l.region_ratio.iter().zip(&r.regions).filter(|(_, g)| g.judged).map(|(v, _)| v);
-            let lo = judged().map(|v| v[0]).fold(f32::INFINITY, f32::min);
-            let hi = judged().map(|v| v[2]).fold(f32::NEG_INFINITY, f32::max);
-            s.push_str(&format!(
-                "| {} | {} | {} | {} | {} | {} | {lo:.2}–{hi:.2} |\n",
-                r.scene,
-                r.variant,
-                r.resolution,
-                l.placements,
-                spread(l.flip, 4),
-                spread(l.mean_ratio, 3)
-            ));
-        }
-    }
-    for r in rows {
-        let (head, rule) = if r.lattices.is_some() { (" over lattices |", "---|") } else { ("", "") };
-        s.push_str(&format!(
-            "\nIndirect light per region, {} {} {}³ (full minus direct, linear):\n\n| region | pixels | reference | vct | ratio |{head}\n|---|---|---|---|---|{rule}\n",
-            r.scene, r.variant, r.resolution
-        ));
-        for (i, g) in r.regions.iter().enumerate() {
-            let f = |c: [f32; 3]| format!("{:.4} {:.4} {:.4}", c[0], c[1], c[2]);
-            let over = r.lattices.as_ref().map_or(String::new(), |l| format!(" {} |", spread(l.region_ratio[i], 2)));
-            let judged = if g.judged { "" } else { " (not judged: nearly dark in the reference)" };
-            s.push_str(&format!(
-                "| {} | {} | {} | {} | {:.2}{judged} |{over}\n",
-                g.region,
-                g.pixels,
-                f(g.reference),
-                f(g.vct),
-                g.ratio
-            ));
-        }
-    }
-    s
-}
-
-/// Writes accuracy.json, accuracy.csv, summary.md, the FLIP maps and indirect-light comparisons
-/// (of every row, or with `maps_of_defaults` of the thesis' and the default model only) and the
-/// speed-against-accuracy chart into `dir`.
-pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
-    let put = |name: &str, text: &str| -> Result<PathBuf> {
-        let p = dir.join(name);
-        std::fs::write(&p, text).map_err(|source| Error::Io { path: p.clone(), source })?;
-        Ok(p)
-    };
-    let mut files = Vec::new();
-    let json =
-        serde_json::to_string_pretty(rows).map_err(|e| Error::input(dir.join("accuracy.json"), e.to_string()))?;
-    files.push(put("accuracy.json", &json)?);
-    let mut csv = String::from(
-        "scene,variant,resolution,bounces,frame_ms,memory_mib,flip,flip_direct_only,mean_ratio,worst_region_ratio,region_log_error,lattices,flip_lattice_min,flip_lattice_mean,flip_lattice_max\n",
-    );
-    for r in rows {
-        let worst = r.regions.iter().filter(|g| g.judged).map(|g| g.ratio).fold(1.0f32, |w, x| {
-            if (x - 1.0).abs() > (w - 1.0).abs() {
-                x
-            } else {
-                w
-            }
-        });
-        let lattices = r.lattices.as_ref().map_or(",,,".to_string(), |l| {
-            format!("{},{:.5},{:.5},{:.5}", l.placements, l.flip[0], l.flip[1], l.flip[2])
-        });
-        csv.push_str(&format!(
-            "{},\"{}\",{},{},{:.3},{:.2},{:.5},{:.5},{:.4},{:.4},{},{lattices}\n",
-            r.scene,
-            r.variant,
-            r.resolution,
-            r.bounces,
-            r.frame_ms,
-            r.memory_mib,
-            r.flip,
-            r.flip_direct_only,
-            r.mean_ratio,
-            worst,
-            region_log_error(&r.regions).map_or(String::new(), |e| format!("{e:.4}"))
-        ));
-    }
-    files.push(put("accuracy.csv", &csv)?);
-    files.push(put("summary.md", &summary(rows))?);
-    for r in rows.iter().filter(|r| !maps_of_defaults || r.variant == "default" || r.variant == "thesis") {
-        let slug: String = format!("flip-{}-{}-{}", r.scene, r.variant, r.resolution)
-            .chars()
-            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
-            .collect();
-        let p = dir.join(format!("{slug}.png"));
-        image::save_buffer(&p, &r.flip_map, r.width, r.height, image::ColorType::Rgb8)
-            .map_err(|source| Error::Image { path: p.clone(), source })?;
-        files.push(p);
-        let p = dir.join(format!("{}.png", slug.replacen("flip-", "indirect-", 1)));
-        image::save_buffer(&p, &r.indirect_pair, 2 * r.width, r.height, image::ColorType::Rgb8)
-            .map_err(|source| Error::Image { path: p.clone(), source })?;
-        files.push(p);
-    }
-    files.extend(super::charts::draw_accuracy(dir, rows, super::charts::Cost::Time)?);
-    // Grids that spread the same voxels differently (--layouts): FLIP over memory too.
-    if rows.iter().any(|r| r.variant.starts_with("warp") || r.variant.starts_with("clipmap")) {
-        files.extend(super::charts::draw_accuracy(dir, rows, super::charts::Cost::Memory)?);
-    }
-    Ok(files)
 }
