@@ -336,6 +336,20 @@ fn a_closed_emissive_box_gathers_exactly_its_radiance() {
     assert!(thesis < 0.4, "the thesis' model should lose much of it: {thesis}");
 }
 
+/// The study's chain boxes (common/cone.glsl, CONE_FLAG_CHAIN_BOX) correct opacity for the step
+/// as Crassin et al.'s correction does, but read each chain at the nearest texel along its axis
+/// and add the chains' depths by the cone's advance along each axis. Cause: corrected trilinear
+/// tents let cones through one-texel walls (the closed box gathered 0.40), and depths blended by
+/// the squared direction let aslant cones through (0.43).
+#[test]
+fn chain_boxes_keep_the_closed_box_walls_that_opacity_correction_lets_through() {
+    let corrected = furnace_mean(GiFile { opacity_correction: true, ..GiFile::default() });
+    let boxes = furnace_mean(GiFile { chain_box: true, ..GiFile::default() });
+    println!("closed emissive box (truth 0.5): opacity correction {corrected:.4}, chain boxes {boxes:.4}");
+    assert!((boxes - 0.5).abs() < 0.04, "chain boxes: {boxes}");
+    assert!(boxes > corrected + 0.05, "chain boxes {boxes} against opacity correction {corrected}");
+}
+
 /// The directional albedo of the renderer's specular lobe (GGX D, Smith–Schlick G with
 /// k = (r+1)²/8, Schlick F at the half vector: common/brdf.glsl, reference::pathtrace) at `n_v`
 /// from the normal: the share of an even surround's radiance it reflects. Integrated here on its

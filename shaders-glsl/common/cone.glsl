@@ -59,19 +59,45 @@ vec4 level0_sample(sampler3D level0, vec3 pos);
 // as `atlas` says (render::radiance::AtlasLayout: axis, pitch and length over a chain's length).
 // The chains start at level 1 (their mip 0). `face` holds, per axis, the share of that chain's
 // light that can reach the cone (see `facing_across`).
-vec4 sample_chains(sampler3D tex, vec3 pos, vec3 w, vec3 chain, float lod, vec3 face, vec3 atlas) {
-    float l = lod - 1.0;
+// With CONE_FLAG_CHAIN_BOX each chain is read as boxes along its own axis and the chains' optical
+// depths are added (a study variant, measured in docs/benchmarks.md, "Opacity along the chains";
+// not the default). A chain's texel holds the opacity of crossing it whole along its axis
+// (gi/filter_aniso.comp composites along it), so read at the nearest texel along that axis and
+// corrected for the step (accumulate) it counts once per texel crossed, at any sample phase,
+// where trilinear filtering makes a tent of a one-texel wall that a corrected cone passes
+// through. Across the axis it stays trilinear: a texel's opacity there is a lateral average of
+// cover. And a cone crossing a wall aslant advances |d_a| of its step along each axis a, so each
+// chain's depth, -ln(1 - alpha_a), counts by |d_a|: blended as opacities by d_a^2 (the default),
+// a wall crossed at a grazing angle lets a tenth of the light through.
+
+// Where chain `c` (of axis `a`) is read for a sample at `pos` of chain mip `l`: in its block of the
+// atlas, and with `box` at the centre of its texel along `a` (of mip floor(l)).
+vec3 chain_at(sampler3D tex, vec3 pos, int a, float c, float l, vec3 atlas, bool box) {
     int axis = int(atlas.x);
-    vec3 along = (pos[axis] + chain * atlas.y) / atlas.z;
-    vec3 px = pos, py = pos, pz = pos;
-    px[axis] = along.x;
-    py[axis] = along.y;
-    pz[axis] = along.z;
-    vec4 x = textureLod(tex, px, l);
-    vec4 yy = textureLod(tex, py, l);
-    vec4 z = textureLod(tex, pz, l);
+    if (box) {
+        float n = float(textureSize(tex, int(max(l, 0.0)))[a]) / (a == axis ? atlas.z : 1.0);
+        pos[a] = (floor(pos[a] * n) + 0.5) / n;
+    }
+    pos[axis] = (pos[axis] + c * atlas.y) / atlas.z;
+    return pos;
+}
+
+vec4 sample_chains(sampler3D tex, vec3 pos, vec3 w, vec3 chain, float lod, vec3 face, vec3 atlas, uint flags) {
+    float l = lod - 1.0;
+    bool box = (flags & CONE_FLAG_CHAIN_BOX) != 0u;
+    vec4 x = textureLod(tex, chain_at(tex, pos, 0, chain.x, l, atlas, box), l);
+    vec4 yy = textureLod(tex, chain_at(tex, pos, 1, chain.y, l, atlas, box), l);
+    vec4 z = textureLod(tex, chain_at(tex, pos, 2, chain.z, l, atlas, box), l);
     vec3 wf = w * face;
-    return vec4(wf.x * x.rgb + wf.y * yy.rgb + wf.z * z.rgb, w.x * x.a + w.y * yy.a + w.z * z.a);
+    vec4 s = vec4(wf.x * x.rgb + wf.y * yy.rgb + wf.z * z.rgb, w.x * x.a + w.y * yy.a + w.z * z.a);
+    if (box && s.a > 1e-6) {
+        // Optical depths by the advance along each axis (opaque: OPAQUE_DEPTH).
+        vec3 a = vec3(x.a, yy.a, z.a);
+        float tau = dot(sqrt(w), -log(max(1.0 - a, vec3(exp(-OPAQUE_DEPTH)))));
+        float cover = 1.0 - exp(-tau);
+        s = vec4(s.rgb * (cover / s.a), cover);
+    }
+    return s;
 }
 
 // The level whose trilinear filter stays off the receiving surface, for a sample `height`
@@ -178,9 +204,12 @@ vec3 facing_across(vec4 mo, vec3 dir) {
 }
 
 // Composites sample `s` (premultiplied) of a step `step` long at `level` behind what the cone
-// has; with `correct`, the sample's opacity stands for crossing a whole texel of its level and is
-// corrected for the step's length (Crassin et al. 2011).
-void accumulate(inout March m, vec4 s, float level, float step, bool correct) {
+// has. With CONE_FLAG_OPACITY_CORRECTION (or CONE_FLAG_CHAIN_BOX, from level 1 up) its opacity
+// stands for crossing a whole texel of its level and is corrected for the step's length
+// (Crassin et al. 2011).
+void accumulate(inout March m, vec4 s, float level, float step, uint flags) {
+    bool correct = (flags & CONE_FLAG_OPACITY_CORRECTION) != 0u ||
+                   ((flags & CONE_FLAG_CHAIN_BOX) != 0u && level >= 1.0);
     if (correct && s.a > 1e-6) {
         float a = 1.0 - pow(max(1.0 - s.a, 0.0), step / exp2(level));
         s = vec4(s.rgb * (a / s.a), a);
@@ -204,7 +233,6 @@ vec4 finish(March m) {
 vec4 march_iso(sampler3D volume, sampler3D chain, sampler3D moment, vec3 uvw, vec3 normal, vec3 dir, float tan_half,
                ConeParams p) {
     bool face = (p.flags & CONE_FLAG_FACING) != 0u;
-    bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
     vec3 start = uvw + p.bias * normal / p.dims;
     float rise = dot(dir, normal);
     March m = March(vec3(0.0), 0.0, p.start);
@@ -217,13 +245,13 @@ vec4 march_iso(sampler3D volume, sampler3D chain, sampler3D moment, vec3 uvw, ve
         if (!inside || level >= 1.0) break;
         vec4 s = mix(level0_sample(volume, pos), textureLod(chain, pos, p.chain_base), level);
         if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
-        accumulate(m, s, level, step, correct);
+        accumulate(m, s, level, step, p.flags);
     }
     for (; inside && i < p.steps && m.alpha < 0.95; i++) {
         if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
         vec4 s = textureLod(chain, pos, level - 1.0 + p.chain_base);
         if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
-        accumulate(m, s, level, step, correct);
+        accumulate(m, s, level, step, p.flags);
     }
     return finish(m);
 }
@@ -237,7 +265,6 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
     vec3 start = uvw + p.bias * normal / p.dims;
     float rise = dot(dir, normal);
     vec3 w = dir * dir;
-    bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
     // Chain of axis a: 2a for a cone travelling along +a, 2a + 1 along -a.
     vec3 chain = vec3(0.0, 2.0, 4.0) + vec3(lessThan(dir, vec3(0.0)));
     March m = March(vec3(0.0), 0.0, p.start);
@@ -251,13 +278,13 @@ vec4 march_aniso(sampler3D volume, sampler3D moment, sampler3D atlas, vec3 uvw, 
         vec4 mo = face ? sample_moment(moment, pos, level) : vec4(0.0);
         vec4 iso = level0_sample(volume, pos);
         if (face) iso.rgb *= facing(mo, dir);
-        vec4 s = mix(iso, sample_chains(atlas, pos, w, chain, 1.0, face ? facing_across(mo, dir) : vec3(1.0), p.atlas), level);
-        accumulate(m, s, level, step, correct);
+        vec4 s = mix(iso, sample_chains(atlas, pos, w, chain, 1.0, face ? facing_across(mo, dir) : vec3(1.0), p.atlas, p.flags), level);
+        accumulate(m, s, level, step, p.flags);
     }
     for (; inside && i < p.steps && m.alpha < 0.95; i++) {
         if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
         vec3 share = face ? facing_across(sample_moment(moment, pos, level), dir) : vec3(1.0);
-        accumulate(m, sample_chains(atlas, pos, w, chain, level, share, p.atlas), level, step, correct);
+        accumulate(m, sample_chains(atlas, pos, w, chain, level, share, p.atlas, p.flags), level, step, p.flags);
     }
     return finish(m);
 }
@@ -304,7 +331,7 @@ vec4 clip_read(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D at
     float upper_level = max(level, 1.0);
     vec4 upper;
     if (aniso) {
-        upper = sample_chains(atlas, pos, w, chains, upper_level, face ? facing_across(mo, dir) : vec3(1.0), p.atlas);
+        upper = sample_chains(atlas, pos, w, chains, upper_level, face ? facing_across(mo, dir) : vec3(1.0), p.atlas, p.flags);
     } else {
         upper = textureLod(chain, pos, upper_level - 1.0 + p.chain_base);
         if (face) upper.rgb *= facing(mo, dir);
@@ -328,7 +355,6 @@ vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D a
     float bias = p.bias * s0;
     vec3 start = g0 + bias * normal;
     float rise = dot(dir, normal);
-    bool correct = (p.flags & CONE_FLAG_OPACITY_CORRECTION) != 0u;
     vec3 w = dir * dir;
     vec3 chains = vec3(0.0, 2.0, 4.0) + vec3(lessThan(dir, vec3(0.0)));
     March m = March(vec3(0.0), 0.0, p.start * s0);
@@ -356,7 +382,7 @@ vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D a
         }
         // The step and the opacity correction in level k's texels (exp2(level) * s voxels of
         // level 0).
-        accumulate(m, sample_k, level + log2(s), p.step * exp2(level) * s, correct);
+        accumulate(m, sample_k, level + log2(s), p.step * exp2(level) * s, p.flags);
     }
     return finish(m);
 }

@@ -90,6 +90,13 @@
 #define CONE_FLAG_SELF_CLAMP 2
 // Hide light that leaves its surface away from the cone (the radiance moment volume).
 #define CONE_FLAG_FACING 4
+// Each directional chain read as boxes along its own axis (nearest texel along it, trilinear
+// across it), the chains' optical depths added by the cone's advance along each axis, and the
+// opacity corrected for the step (common/cone.glsl, sample_chains).
+#define CONE_FLAG_CHAIN_BOX 8
+// The optical depth of an opaque texel: an opacity stored in fp16 is at most 1 - 2^-11 short of
+// 1 (its step below 1), so ln 2048; a one-texel wall lets through what fp16 cannot tell from 0.
+#define OPAQUE_DEPTH 7.624619
 // Soft edge of "facing away" (a dot product of unit vectors): light whose surface normal is
 // within this of perpendicular to the view counts in part.
 #define LIT_SIDE_EDGE 0.25

@@ -49,6 +49,9 @@ pub struct GiFile {
     pub step: f32,
     /// Correct each sample's opacity for the step length (Crassin et al. 2011).
     pub opacity_correction: bool,
+    /// Read each directional chain as boxes along its own axis, their optical depths added by
+    /// the cone's advance along each axis, opacity corrected for the step (common/cone.glsl).
+    pub chain_box: bool,
     /// Keep each sample's filter off the receiving surface (common/cone.glsl).
     pub self_clamp: bool,
     /// Hide light that leaves its surfaces away from the cone (the radiance moment volume).
@@ -185,8 +188,11 @@ impl std::str::FromStr for ConeSet {
 impl GiFile {
     /// The model's switches as the shaders' `CONE_FLAG_*` bits (common/config.h).
     pub fn cone_flags(&self) -> u32 {
-        use crate::config::{CONE_FLAG_FACING, CONE_FLAG_OPACITY_CORRECTION, CONE_FLAG_SELF_CLAMP};
+        use crate::config::{
+            CONE_FLAG_CHAIN_BOX, CONE_FLAG_FACING, CONE_FLAG_OPACITY_CORRECTION, CONE_FLAG_SELF_CLAMP,
+        };
         (if self.opacity_correction { CONE_FLAG_OPACITY_CORRECTION } else { 0 })
+            | (if self.chain_box { CONE_FLAG_CHAIN_BOX } else { 0 })
             | (if self.self_clamp { CONE_FLAG_SELF_CLAMP } else { 0 })
             | (if self.facing { CONE_FLAG_FACING } else { 0 })
     }
@@ -206,6 +212,7 @@ impl GiFile {
             level: LevelRule::Diameter,
             step: 0.5,
             opacity_correction: false,
+            chain_box: false,
             self_clamp: false,
             facing: false,
             bounces: 1,

@@ -570,6 +570,7 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     out.push(v("default, no self clamp", GiFile { self_clamp: false, ..d() }));
     out.push(v("default, no facing", GiFile { facing: false, ..d() }));
     out.push(v("default, opacity correction", GiFile { opacity_correction: true, ..d() }));
+    out.push(v("default, chain boxes", GiFile { chain_box: true, ..d() }));
     out.push(v("default, step 0.25", GiFile { step: 0.25, ..d() }));
     out.push(v("default, step 1", GiFile { step: 1.0, ..d() }));
     out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
