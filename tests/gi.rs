@@ -462,7 +462,21 @@ fn no_light_no_emission_means_black_and_emission_lights_only_its_own_colour() {
 
 #[test]
 fn tessellated_and_rasterized_voxels_give_nearly_the_same_image() {
-    let scene = Scene::embedded_default().unwrap();
+    use vct::scene::file::Injection;
+    // The footprint level rule samples a level finer than the thesis' diameter rule, so the
+    // voxelizers' sub-voxel differences show a little more (mean 1.67 measured, 64³; 1.78 with
+    // sixteen cones). Injection from the voxels (the default) reads each voxel's own normal and
+    // whether its neighbour towards the light is occupied, where the texels only mark the voxel
+    // they land in, so it passes more of those differences on (mean 2.22-2.25, p99 12-14).
+    for (injection, mean_bar, p99_bar) in [(Injection::Texels, 2.0, 12.0), (Injection::Voxels, 2.5, 16.0)] {
+        let mut scene = Scene::embedded_default().unwrap();
+        scene.settings.gi.injection = injection;
+        same_image_from_both_voxelizers(scene, mean_bar, p99_bar);
+    }
+}
+
+fn same_image_from_both_voxelizers(scene: Scene, mean_bar: f32, p99_bar: f32) {
+    let injection = scene.settings.gi.injection.name();
     let mut tess = options(View::Full, 64);
     tess.method = VoxelizeMethod::tess();
     let a = render(scene.clone(), tess);
@@ -477,10 +491,8 @@ fn tessellated_and_rasterized_voxels_give_nearly_the_same_image() {
     let mut sorted = diffs.clone();
     sorted.sort_by(f32::total_cmp);
     let p99 = sorted[sorted.len() * 99 / 100];
-    println!("tess vs raster: mean |ΔLDR| {mean:.3}, 99th percentile {p99}");
-    // The footprint level rule samples a level finer than the thesis' diameter rule, so the
-    // voxelizers' sub-voxel differences show a little more (mean 1.67 measured, 64³).
-    assert!(mean < 2.0 && p99 <= 12.0, "mean {mean}, p99 {p99}");
+    println!("tess vs raster, injection from the {injection}: mean |ΔLDR| {mean:.3}, 99th percentile {p99}");
+    assert!(mean < mean_bar && p99 <= p99_bar, "injection from the {injection}: mean {mean}, p99 {p99}");
 }
 
 #[test]

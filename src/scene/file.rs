@@ -74,13 +74,16 @@ pub struct GiFile {
 pub enum Injection {
     /// Each shadow-map texel reconstructs its lit point and marks its voxel (Freed 2018 §4.3,
     /// Algorithm 2): the cost follows the map's texels, and a voxel no texel reaches (a surface
-    /// the light grazes, or a grid finer than the map) stays dark.
-    #[default]
+    /// the light grazes, or a grid finer than the map) stays dark; one a texel reaches is lit
+    /// whole, across a shadow edge too.
     Texels,
     /// Each occupied voxel that is the first met from the light looks its lit side up in the
     /// shadow map (as surface shading does, with its PCF): the cost follows the occupied voxels
-    /// (docs/benchmarks.md, "Injection from the voxels"). A warped grid, whose texels are not a
-    /// voxel wide, injects from the texels.
+    /// (docs/benchmarks.md, "Injection from the voxels"), and a voxel across a shadow edge gets
+    /// its lit side's share. A warped grid, whose texels are not a voxel wide, injects from the
+    /// texels. The default since sixteen cones (docs/benchmarks.md, "Sixteen cones and injection
+    /// from the voxels").
+    #[default]
     Voxels,
 }
 
@@ -226,13 +229,16 @@ impl GiFile {
 impl Default for GiFile {
     /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
     /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
-    /// back into the receiving surface, light hidden where it faces away, and eight narrow cones.
+    /// back into the receiving surface, light hidden where it faces away, sixteen narrow cones, and
+    /// injection from the voxels (measured together: "Sixteen cones and injection from the
+    /// voxels").
     fn default() -> Self {
         GiFile {
             steps: 256,
             filter: Filter::Aniso,
-            cones: ConeSet::Fib8,
+            cones: ConeSet::Fib16,
             aperture: 0.5,
+            injection: Injection::Voxels,
             level: LevelRule::Footprint,
             self_clamp: true,
             facing: true,

@@ -556,6 +556,9 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
         (ConeSet::Fib8, 0.7),
         (ConeSet::Fib8, 0.5),
         (ConeSet::Fib16, 0.5),
+        (ConeSet::Fib16, 0.7),
+        (ConeSet::Fib16, 1.0),
+        (ConeSet::Fib32, 0.5),
         (ConeSet::Fib32, 1.0),
     ] {
         let gi = GiFile { cones, aperture, ..facing.clone() };
