@@ -227,9 +227,9 @@ vec4 finish(March m) {
 }
 
 // The thesis' march through the isotropic volume: level 0 in `volume`, the levels above it in
-// `chain`. Below level 1 level 0 is blended in; that phase is a loop of its own, so a CPU driver
-// does not read level 0 at every step (it flattens a branch inside a loop into running both
-// sides).
+// `chain` (CONE_FLAG_CHAIN_BOX concerns the directional chains only). Below level 1 level 0 is
+// blended in; that phase is a loop of its own, so a CPU driver does not read level 0 at every
+// step (it flattens a branch inside a loop into running both sides).
 vec4 march_iso(sampler3D volume, sampler3D chain, sampler3D moment, vec3 uvw, vec3 normal, vec3 dir, float tan_half,
                ConeParams p) {
     bool face = (p.flags & CONE_FLAG_FACING) != 0u;
@@ -245,13 +245,13 @@ vec4 march_iso(sampler3D volume, sampler3D chain, sampler3D moment, vec3 uvw, ve
         if (!inside || level >= 1.0) break;
         vec4 s = mix(level0_sample(volume, pos), textureLod(chain, pos, p.chain_base), level);
         if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
-        accumulate(m, s, level, step, p.flags);
+        accumulate(m, s, level, step, p.flags & ~CONE_FLAG_CHAIN_BOX);
     }
     for (; inside && i < p.steps && m.alpha < 0.95; i++) {
         if (!next_sample(m, start, dir, tan_half, rise, p, pos, level, step)) break;
         vec4 s = textureLod(chain, pos, level - 1.0 + p.chain_base);
         if (face) s.rgb *= facing(sample_moment(moment, pos, level), dir);
-        accumulate(m, s, level, step, p.flags);
+        accumulate(m, s, level, step, p.flags & ~CONE_FLAG_CHAIN_BOX);
     }
     return finish(m);
 }
@@ -382,7 +382,8 @@ vec4 march_clip(sampler3D volume, sampler3D chain, sampler3D moment, sampler3D a
         }
         // The step and the opacity correction in level k's texels (exp2(level) * s voxels of
         // level 0).
-        accumulate(m, sample_k, level + log2(s), p.step * exp2(level) * s, p.flags);
+        accumulate(m, sample_k, level + log2(s), p.step * exp2(level) * s,
+                   aniso ? p.flags : p.flags & ~CONE_FLAG_CHAIN_BOX);
     }
     return finish(m);
 }

@@ -50,7 +50,8 @@ pub struct GiFile {
     /// Correct each sample's opacity for the step length (Crassin et al. 2011).
     pub opacity_correction: bool,
     /// Read each directional chain as boxes along its own axis, their optical depths added by
-    /// the cone's advance along each axis, opacity corrected for the step (common/cone.glsl).
+    /// the cone's advance along each axis, opacity corrected for the step (common/cone.glsl; with
+    /// the directional chains only: the isotropic ones are read as before).
     pub chain_box: bool,
     /// Keep each sample's filter off the receiving surface (common/cone.glsl).
     pub self_clamp: bool,
