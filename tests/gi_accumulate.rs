@@ -111,7 +111,12 @@ fn disoccluded(scene: &Scene, a: &Camera, b: &Camera, gap: f32) -> Vec<bool> {
 #[test]
 fn a_jump_cut_rejects_the_history_where_the_surface_changed() {
     let ctx = common::context();
-    let scene = scene();
+    // The set unturned: turned by pixel (the default), a pixel of the mask's edge (where the CPU
+    // and the rasterizer part at a silhouette) that takes the history in one frame and an estimate
+    // in the other differs by the turn's spread (0.008-0.010 measured), which hides the leak this
+    // test looks for.
+    let mut scene = scene();
+    scene.settings.gi.turn_cones = false;
     let scale = 2;
     let cycle = scale * scale;
     let r = Renderer::new(&ctx, scene.clone(), options(scale, true)).unwrap();

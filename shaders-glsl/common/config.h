@@ -94,6 +94,9 @@
 // across it), the chains' optical depths added by the cone's advance along each axis, and the
 // opacity corrected for the step (common/cone.glsl, sample_chains).
 #define CONE_FLAG_CHAIN_BOX 8
+// Turn the surfaces' cone set about the normal by an angle of the pixel (common/gather.glsl,
+// cone_turn).
+#define CONE_FLAG_TURN 16
 // The optical depth of an opaque texel: an opacity stored in fp16 is at most 1 - 2^-11 short of
 // 1 (its step below 1), so ln 2048; a one-texel wall lets through what fp16 cannot tell from 0.
 #define OPAQUE_DEPTH 7.624619

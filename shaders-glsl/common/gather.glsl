@@ -24,11 +24,22 @@ vec4 trace_frame_cone(vec3 uvw, vec3 n, vec3 dir, float tan_half, ConeParams p) 
                                tan_half, p);
 }
 
+// The angle the surfaces' cone set turns by about the normal at pixel `px`: with CONE_FLAG_TURN,
+// interleaved gradient noise (Jimenez 2014, "Next Generation Post Processing in Call of Duty:
+// Advanced Warfare"), whose neighbouring values differ most, so that any few pixels together
+// sample each cone's cell in several directions; else 0.
+float cone_turn(ivec2 px) {
+    if ((uint(frame.cone_model.z) & CONE_FLAG_TURN) == 0u) return 0.0;
+    return 6.2831853 * fract(52.9829189 * fract(dot(vec2(px), vec2(0.06711056, 0.00583715))));
+}
+
 // Returns the cosine-weighted mean incoming radiance (rgb) and occlusion (a) around `n` at `uvw`
-// with the cones `first` .. `first + count` of `cones` (the surface set, or the voxel bounce set).
-vec4 gather_cones(vec3 uvw, vec3 n, ConeParams p, int first, int count) {
-    vec3 t, b;
-    tangent_frame(n, t, b);
+// with the cones `first` .. `first + count` of `cones` (the surface set, or the voxel bounce set),
+// the set turned about `n` by `turn` radians.
+vec4 gather_cones(vec3 uvw, vec3 n, ConeParams p, int first, int count, float turn) {
+    vec3 t0, b0;
+    tangent_frame(n, t0, b0);
+    vec3 t = cos(turn) * t0 + sin(turn) * b0, b = cos(turn) * b0 - sin(turn) * t0;
     vec4 sum = vec4(0.0);
     for (int i = first; i < first + count; i++) {
         vec4 dw = cones[i].dir_weight;
@@ -38,14 +49,14 @@ vec4 gather_cones(vec3 uvw, vec3 n, ConeParams p, int first, int count) {
     return sum;
 }
 
-// The surfaces' gather (the diffuse cone set).
-vec4 gather_diffuse(vec3 uvw, vec3 n, ConeParams p) {
-    return gather_cones(uvw, n, p, 0, int(frame.cone_model.x));
+// The surfaces' gather (the diffuse cone set) at pixel `px`.
+vec4 gather_diffuse(vec3 uvw, vec3 n, ConeParams p, ivec2 px) {
+    return gather_cones(uvw, n, p, 0, int(frame.cone_model.x), cone_turn(px));
 }
 
 // The voxel-space bounce's gather (its own, cheaper set, after the surfaces' in `cones`).
 vec4 gather_bounce(vec3 uvw, vec3 n, ConeParams p) {
-    return gather_cones(uvw, n, p, MAX_CONES, int(frame.cone_model.w));
+    return gather_cones(uvw, n, p, MAX_CONES, int(frame.cone_model.w), 0.0);
 }
 
 #endif

@@ -64,9 +64,9 @@ vec3 texel_size_colour(vec3 world) {
 // material `m` with its textures already applied: `albedo` and shading normal `n`. `given`:
 // the diffuse cones' gather (rgb light, a occlusion) was traced elsewhere (at a reduced
 // resolution, then upsampled: shade/deferred.comp) and is `gathered_in`; `specular_given`: so
-// was the specular cone's light (`specular_cone`), `specular_in`.
+// was the specular cone's light (`specular_cone`), `specular_in`. `px`: the pixel shaded.
 vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given, vec4 gathered_in,
-                         bool specular_given, vec3 specular_in) {
+                         bool specular_given, vec3 specular_in, ivec2 px) {
     float roughness = m.emissive.a, metallic = m.albedo.a;
     vec3 v = normalize(frame.camera_pos.xyz - world);
     n = facing_normal(n, world);
@@ -84,7 +84,7 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
     if (frame.view.z > 0.5) {
         ConeParams p = frame_cone_params();
         vec3 uvw = world_to_march(world);
-        vec4 gathered = given ? gathered_in : gather_diffuse(uvw, n, p);
+        vec4 gathered = given ? gathered_in : gather_diffuse(uvw, n, p, px);
         occlusion = gathered.a;
         // Outgoing diffuse = albedo/pi * integral(L cos) = albedo * sum(w_i L_i).
         diffuse = albedo * (1.0 - metallic) * gathered.rgb;
@@ -110,8 +110,8 @@ vec3 shade_surface_given(Material m, vec3 albedo, vec3 n, vec3 world, bool given
     return result;
 }
 
-vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world) {
-    return shade_surface_given(m, albedo, n, world, false, vec4(0.0), false, vec3(0.0));
+vec3 shade_surface(Material m, vec3 albedo, vec3 n, vec3 world, ivec2 px) {
+    return shade_surface_given(m, albedo, n, world, false, vec4(0.0), false, vec3(0.0), px);
 }
 
 #endif

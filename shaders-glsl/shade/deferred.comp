@@ -33,6 +33,10 @@
 // material reflects specularly (common/shading.glsl; without, SPECULAR_REDUCED is off too).
 layout(constant_id = 7) const bool AREA_LIGHTS = true;
 layout(constant_id = 8) const bool SPECULAR_MATERIALS = true;
+// Constant 9: the cone set turns by pixel (CONE_FLAG_TURN) and every pixel holds a gather of its
+// own: at full resolution the cones are traced into `diffuse_low` (PASS_TRACE), or accumulated
+// (`history_out`), and the shading resolves each pixel's from its neighbours' (`resolved_gather`).
+layout(constant_id = 9) const bool RESOLVE = false;
 #define VCT_AREA_LIGHTS AREA_LIGHTS
 #define VCT_SPECULAR SPECULAR_MATERIALS
 #include "frame.glsl"
@@ -138,6 +142,27 @@ vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec)
     return total > 0.0 ? sum / total : nearest;
 }
 
+// The diffuse gather at `px` (at `world`, normal `n`) resolved from the cones traced at the 3×3
+// pixels around it, each with the set turned by its own angle (common/gather.glsl, cone_turn):
+// the mean of those on the same surface (normal within ~25 degrees, position within half a
+// voxel of this pixel's tangent plane, as `upsampled_gather` judges), this pixel's own always
+// among them. A turned set leaves each pixel's light off by where its cones fell; nine turns
+// together sample each cone's cell in nine directions (docs/benchmarks.md, "Cone by cone").
+vec4 resolved_gather(ivec2 px, vec3 world, vec3 n) {
+    ivec2 size = ivec2(frame.viewport.xy);
+    float plane = 0.5 * frame.voxel_origin.w;
+    vec4 sum = vec4(0.0);
+    float total = 0.0;
+    for (int i = 0; i < 9; i++) {
+        ivec2 q = clamp(px + ivec2(i % 3 - 1, i / 3 - 1), ivec2(0), size - 1);
+        vec3 wq, nq;
+        if (!surface_at(q, wq, nq) || dot(nq, n) < 0.9 || abs(dot(wq - world, n)) > plane) continue;
+        sum += ACCUMULATE ? imageLoad(history_out, q) : imageLoad(diffuse_low, q);
+        total += 1.0;
+    }
+    return sum / max(total, 1.0);
+}
+
 // What a history pixel holds, beside its surface's packed normal (zero: nothing; background or
 // GI off): a trace of its own, or, until it gets one, an estimate: the upsampled light averaged
 // over the frames, whose traced pixels move through the block.
@@ -232,7 +257,7 @@ void main() {
         if (frame.view.z > 0.5 && surface_at(traced, world, n)) {
             vec3 uvw = world_to_march(world);
             ConeParams p = frame_cone_params();
-            g = gather_diffuse(uvw, n, p);
+            g = gather_diffuse(uvw, n, p, traced);
             if (SPECULAR_REDUCED) {
                 vec4 a = imageLoad(gbuffer_albedo, traced);
                 Material m = materials[uint(a.w + 0.5)];
@@ -249,7 +274,7 @@ void main() {
     if (any(greaterThanEqual(px, imageSize(hdr)))) return;
     vec3 world, n;
     bool found = surface_at(px, world, n);
-    bool given = GI_SCALE > 1u && frame.view.z > 0.5;
+    bool given = (GI_SCALE > 1u || RESOLVE) && frame.view.z > 0.5;
     if (PASS == PASS_ACCUMULATE) {
         // This frame's gather (the traced pixel's own, the kept trace, or the upsampled light,
         // averaged with the kept estimate) into `history_out`, which the shading pass then reads.
@@ -292,8 +317,10 @@ void main() {
     if (given) {
         bool own;
         if (ACCUMULATE) {
-            gathered = imageLoad(history_out, px);
+            gathered = RESOLVE ? resolved_gather(px, world, n) : imageLoad(history_out, px);
             if (SPECULAR_REDUCED) spec = imageLoad(specular_history_out, px);
+        } else if (RESOLVE) {
+            gathered = resolved_gather(px, world, n);
         } else {
             gathered = upsampled_gather(px, world, n, own, spec);
         }
@@ -302,6 +329,6 @@ void main() {
     // (shade_surface_given reads the gather only with GI on): as a runtime value, the cone code
     // it stands for stayed in this pass, and lavapipe, which runs a branch for every lane
     // whether or not one takes it, paid for a cone's first steps at every pixel.
-    const bool traced = GI_SCALE > 1u;
-    imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, traced, gathered, SPECULAR_REDUCED && traced, spec.rgb), 1.0));
+    const bool traced = GI_SCALE > 1u || RESOLVE;
+    imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, traced, gathered, SPECULAR_REDUCED && traced, spec.rgb, px), 1.0));
 }

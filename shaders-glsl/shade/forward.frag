@@ -32,5 +32,5 @@ void main() {
     Material m = materials[push.material];
     vec3 albedo, n;
     surface_inputs(m, in_normal, in_uv, in_tangent, albedo, n);
-    out_radiance = vec4(shade_surface(m, albedo, n, in_world), 1.0);
+    out_radiance = vec4(shade_surface(m, albedo, n, in_world, ivec2(gl_FragCoord.xy)), 1.0);
 }

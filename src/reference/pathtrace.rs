@@ -47,6 +47,17 @@ pub struct RefImage {
     pub relative_noise: f32,
 }
 
+/// An orthonormal tangent frame (t, b) around the unit normal `n`, continuous except where n.z
+/// changes sign (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). The cone sets are
+/// laid out in this frame (the renderer builds the same, `tangent_frame` in common/cone.glsl), so
+/// a per-cone comparison splits the hemisphere as the renderer does.
+pub fn tangent_frame(n: Vec3) -> (Vec3, Vec3) {
+    let s = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (s + n.z);
+    let c = n.x * n.y * a;
+    (Vec3::new(1.0 + s * n.x * n.x * a, s * c, -s * n.x), Vec3::new(c, s + n.y * n.y * a, -n.y))
+}
+
 /// What the camera ray through a pixel's centre hits first (a G-buffer on the CPU).
 #[derive(Clone, Copy, Debug)]
 pub struct PrimaryHit {
@@ -423,6 +434,56 @@ impl<'a> PathTracer<'a> {
             (o, d) = (origin, next);
         }
         l_sum
+    }
+
+    /// The light arriving at the surface a pixel's centre ray meets, split among the cells of a
+    /// cone set (`vct bench --accuracy --per-cone`). `cells` are unit directions in the surface's
+    /// tangent frame (z along the normal; x and y as [`tangent_frame`] builds them), each standing
+    /// for the directions nearer to it than to any other. Draws `samples` cosine-weighted
+    /// directions and returns the surface's albedo and, for each cell, the radiance arriving along
+    /// the draws that fall in it, summed and divided by `samples`: the cell's share of the
+    /// cosine-weighted mean incoming radiance (E/π), which the cells' shares sum to. The arriving
+    /// light is what `bounces - 1` further bounces bring (0: the direct light of the surfaces it
+    /// meets, and their emission, except an area light's, which the renderer counts as direct).
+    /// None where the ray meets nothing.
+    pub fn incoming_by_cell(
+        &self,
+        pixel: (u32, u32),
+        cells: &[Vec3],
+        bounces: u32,
+        samples: u32,
+        seed: u64,
+    ) -> Option<(Vec3, Vec<Vec3>)> {
+        let (o, d) = self.scene.camera.ray(pixel.0 as f32, pixel.1 as f32);
+        let x = self.hit(o, d)?;
+        let eps = 1e-4 * self.scene.mesh.bounds.size().length().max(1e-3);
+        let origin = x.p + x.ng * eps;
+        let (t, b) = tangent_frame(x.n);
+        let area_lights = self.scene.materials.iter().any(|m| m.area_light);
+        let mut rng = SmallRng::seed_from_u64(seed);
+        let mut sums = vec![Vec3::ZERO; cells.len()];
+        for _ in 0..samples {
+            // Cosine-weighted: a uniform point on the unit disc, lifted to the hemisphere.
+            let (r, phi) = (rng.gen::<f32>().sqrt(), std::f32::consts::TAU * rng.gen::<f32>());
+            let local = Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - r * r).max(0.0).sqrt());
+            let dir = (t * local.x + b * local.y + x.n * local.z).normalize();
+            if dir.dot(x.ng) <= 0.0 {
+                continue;
+            }
+            let Some(cell) = (0..cells.len()).max_by(|&i, &j| local.dot(cells[i]).total_cmp(&local.dot(cells[j])))
+            else {
+                return Some((x.albedo, sums));
+            };
+            let mut l = self.radiance(origin, dir, bounces.saturating_sub(1), false, &mut rng);
+            if let Some(y) = self.hit(origin, dir).filter(|_| area_lights) {
+                let m = &self.scene.materials[y.material as usize];
+                if m.area_light {
+                    l -= m.emissive;
+                }
+            }
+            sums[cell] += l;
+        }
+        Some((x.albedo, sums.into_iter().map(|s| s / samples.max(1) as f32).collect()))
     }
 
     /// Renders the scene's camera view; `progress` is called with each finished row count.

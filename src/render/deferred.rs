@@ -97,8 +97,12 @@ impl DeferredShadePass {
     /// `anisotropic`: cones sample the six directional chains (specialization constant);
     /// `gi_scale`: the diffuse cones run at one pixel in `gi_scale`² (1, 2, 4 or 8); `accumulate`:
     /// screen-space accumulation of them over frames (with `gi_scale` > 1); `reduced_specular`:
-    /// the specular cone runs with them (else at every pixel).
-    #[allow(clippy::too_many_arguments)] // the passes it reads, and four switches
+    /// the specular cone runs with them (else at every pixel); `turned`: the cone set turns by
+    /// pixel (`GiFile::turn_cones`), so where every pixel holds a gather of its own (scale 1,
+    /// whose cones are then traced into an image of their own, or accumulation) each pixel takes
+    /// the mean of its 3×3 neighbours on its surface (`resolved_gather` in shade/deferred.comp),
+    /// nine turns of the set.
+    #[allow(clippy::too_many_arguments)] // the passes it reads, and five switches
     pub fn new(
         ctx: &Arc<Context>,
         scene: &SceneGpu,
@@ -110,6 +114,7 @@ impl DeferredShadePass {
         gi_scale: u32,
         accumulate: bool,
         reduced_specular: bool,
+        turned: bool,
         grid: crate::gpu::GridSpec,
     ) -> Result<Self> {
         if !matches!(gi_scale, 1 | 2 | 4 | 8) {
@@ -169,8 +174,12 @@ impl DeferredShadePass {
             ],
             2,
         )?;
-        let (lw, lh) =
-            if gi_scale > 1 { (targets.width.div_ceil(gi_scale), targets.height.div_ceil(gi_scale)) } else { (1, 1) };
+        let resolve = turned && (gi_scale == 1 || accumulate);
+        let (lw, lh) = if gi_scale > 1 || resolve {
+            (targets.width.div_ceil(gi_scale), targets.height.div_ceil(gi_scale))
+        } else {
+            (1, 1)
+        };
         let low = |name: &str, (w, h)| {
             Image::new(ctx, name, ImageDesc::d2(vk::Format::R16G16B16A16_SFLOAT, w, h, vk::ImageUsageFlags::STORAGE))
         };
@@ -230,6 +239,7 @@ impl DeferredShadePass {
                 reduced_specular as u32,
                 scene.area_lights as u32,
                 scene.specular as u32,
+                resolve as u32,
             ];
             Pipeline::compute(
                 ctx,
@@ -240,7 +250,7 @@ impl DeferredShadePass {
             )
         };
         let shade_pipeline = pipeline("deferred shade", 0)?;
-        let trace_pipeline = (gi_scale > 1).then(|| pipeline("diffuse cones (reduced)", 1)).transpose()?;
+        let trace_pipeline = (gi_scale > 1 || resolve).then(|| pipeline("diffuse cones (reduced)", 1)).transpose()?;
         // A pass of its own: in the shading pass, the accumulation's code (even where it did not
         // run) made lavapipe's shading 2.2x slower (1280x720, scale 4: 777 -> 1766 ms).
         let accumulate_pipeline = accumulate.then(|| pipeline("diffuse accumulation", 2)).transpose()?;

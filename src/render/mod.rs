@@ -394,6 +394,7 @@ impl Renderer {
                     s,
                     acc,
                     options.reduced_specular,
+                    scene.settings.gi.turn_cones,
                     grid_spec,
                 )?)
             }
@@ -667,6 +668,7 @@ impl Renderer {
                 self.options.gi_scale,
                 self.options.gi_accumulate,
                 self.options.reduced_specular,
+                self.scene.settings.gi.turn_cones,
                 self.voxels.grid.spec(),
             )?),
             Tracing::Forward => None,

@@ -67,6 +67,20 @@ pub struct GiFile {
     pub area_lights: bool,
     /// How injection finds the lit voxels: from the shadow map's texels, or from the voxels.
     pub injection: Injection,
+    /// Turn the diffuse cone set about the normal by a different angle at each pixel
+    /// (interleaved gradient noise, Jimenez 2014), so that neighbouring pixels sample their
+    /// cones' cells in other directions: a cone reads its footprint round its axis, and where
+    /// its cell's light lies off that axis (beside an occluder, below a spotlight's edge) a fixed
+    /// set misses it at every pixel alike (docs/benchmarks.md, "Cone by cone"). Deferred shading
+    /// at full resolution then resolves each pixel's gather from its 3×3 neighbours on the same
+    /// surface; at a reduced GI scale the upsampling mixes the turns, and forward shading leaves
+    /// each pixel its own.
+    pub turn_cones: bool,
+    /// A diagnostic, not a model: the surfaces gather cone `k` of their set alone, with weight
+    /// one, so the image's indirect light is that cone's radiance (`vct bench --accuracy
+    /// --per-cone`). Not read from scene files.
+    #[serde(skip)]
+    pub only_cone: Option<u32>,
 }
 
 /// How injection finds the voxels a light lights (render::inject::from_voxels).
@@ -193,12 +207,13 @@ impl GiFile {
     /// The model's switches as the shaders' `CONE_FLAG_*` bits (common/config.h).
     pub fn cone_flags(&self) -> u32 {
         use crate::config::{
-            CONE_FLAG_CHAIN_BOX, CONE_FLAG_FACING, CONE_FLAG_OPACITY_CORRECTION, CONE_FLAG_SELF_CLAMP,
+            CONE_FLAG_CHAIN_BOX, CONE_FLAG_FACING, CONE_FLAG_OPACITY_CORRECTION, CONE_FLAG_SELF_CLAMP, CONE_FLAG_TURN,
         };
         (if self.opacity_correction { CONE_FLAG_OPACITY_CORRECTION } else { 0 })
             | (if self.chain_box { CONE_FLAG_CHAIN_BOX } else { 0 })
             | (if self.self_clamp { CONE_FLAG_SELF_CLAMP } else { 0 })
             | (if self.facing { CONE_FLAG_FACING } else { 0 })
+            | (if self.turn_cones { CONE_FLAG_TURN } else { 0 })
     }
 
     /// The model as the thesis has it (Listing 4.1, §4.4): the renderer's defaults before the
@@ -223,6 +238,8 @@ impl GiFile {
             bounce_cones: ConeSet::Thesis5Cells,
             area_lights: false,
             injection: Injection::Texels,
+            turn_cones: false,
+            only_cone: None,
         }
     }
 }
@@ -230,9 +247,9 @@ impl GiFile {
 impl Default for GiFile {
     /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
     /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
-    /// back into the receiving surface, light hidden where it faces away, sixteen narrow cones, and
+    /// back into the receiving surface, light hidden where it faces away, sixteen narrow cones,
     /// injection from the voxels (measured together: "Sixteen cones and injection from the
-    /// voxels").
+    /// voxels"), and the cone set turned by pixel ("Cone by cone").
     fn default() -> Self {
         GiFile {
             steps: 256,
@@ -244,6 +261,7 @@ impl Default for GiFile {
             self_clamp: true,
             facing: true,
             area_lights: true,
+            turn_cones: true,
             ..GiFile::thesis()
         }
     }

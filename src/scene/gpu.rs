@@ -338,14 +338,21 @@ impl SceneGpu {
         )?;
         let sampler = Sampler::linear_repeat(ctx, "material sampler")?;
         let gi = &scene.settings.gi;
-        let cone_count = super::cones::cones(gi.cones).len() as u32;
+        let mut cone_count = super::cones::cones(gi.cones).len() as u32;
         let bounce_cone_count = super::cones::cones(gi.bounce_cones).len() as u32;
-        let cones = Buffer::from_slice(
-            ctx,
-            "diffuse cones",
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-            &super::cones::buffer(gi.cones, gi.aperture, gi.bounce_cones),
-        )?;
+        let mut cone_data = super::cones::buffer(gi.cones, gi.aperture, gi.bounce_cones);
+        if let Some(k) = gi.only_cone {
+            if k >= cone_count {
+                return Err(crate::error::Error::param(
+                    "only_cone",
+                    format!("cone {k} of the set {}, which has {cone_count}", gi.cones.name()),
+                ));
+            }
+            cone_data[0] = cone_data[k as usize];
+            cone_data[0].dir_weight[3] = 1.0;
+            cone_count = 1;
+        }
+        let cones = Buffer::from_slice(ctx, "diffuse cones", vk::BufferUsageFlags::STORAGE_BUFFER, &cone_data)?;
 
         let all = vk::ShaderStageFlags::ALL;
         let set = DescriptorSet::new(

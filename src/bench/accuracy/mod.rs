@@ -25,6 +25,7 @@ use crate::scene::file::{ConeSet, Filter, GiFile, Injection, LevelRule};
 use crate::scene::Scene;
 use crate::voxel::{Coverage, VoxelizeMethod};
 
+pub mod per_cone;
 mod report;
 pub use report::{summary, write};
 
@@ -377,6 +378,11 @@ impl Variant {
     }
 }
 
+/// Indirect light: the full image minus the direct-light one.
+fn indirect(full: &[Vec3], direct: &[Vec3]) -> Vec<Vec3> {
+    full.iter().zip(direct).map(|(a, b)| *a - *b).collect()
+}
+
 fn scaled(img: &[Vec3], k: f32) -> Vec<Vec3> {
     img.iter().map(|p| p.max(Vec3::ZERO) * k).collect()
 }
@@ -432,7 +438,6 @@ pub fn measure(
         }
     }
     let (flip_direct_only, _) = metrics::flip(&j.full_rgb, &direct.1, w, h);
-    let indirect = |f: &[Vec3], d: &[Vec3]| -> Vec<Vec3> { f.iter().zip(d).map(|(a, b)| *a - *b).collect() };
     let (ref_img, vct_img) = (indirect(&j.full, &j.direct), indirect(&full, &direct.0));
     let ref_ind = region_means(&j.regions, &ref_img);
     let vct_ind = region_means(&j.regions, &vct_img);
@@ -577,6 +582,8 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     out.push(v("default, step 0.25", GiFile { step: 0.25, ..d() }));
     out.push(v("default, step 1", GiFile { step: 1.0, ..d() }));
     out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
+    let turn = if default.turn_cones { "default, cones fixed" } else { "default, cones turned by pixel" };
+    out.push(v(turn, GiFile { turn_cones: !default.turn_cones, ..d() }));
     for injection in [Injection::Voxels, Injection::Texels] {
         if injection != default.injection {
             out.push(v(&format!("default, injection from {}", injection.name()), GiFile { injection, ..d() }));

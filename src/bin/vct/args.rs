@@ -139,6 +139,10 @@ pub struct SceneArgs {
     /// Diffuse cone set: thesis5|thesis5-cells|crassin6|fib8|fib16|fib32 (overrides gi.cones).
     #[arg(long)]
     pub cones: Option<vct::scene::file::ConeSet>,
+    /// Turn the diffuse cone set about the normal by a different angle at each pixel, resolved
+    /// over 3×3 pixels (on|off; overrides gi.turn_cones, on by default).
+    #[arg(long, value_enum)]
+    pub turn_cones: Option<OnOff>,
     /// How injection finds the lit voxels: texels (each shadow-map texel finds its voxel; Freed
     /// 2018 Algorithm 2) or voxels (each occupied voxel first met from the light looks itself up
     /// in the shadow maps: the cost follows the voxels; a warped grid injects from the texels)
@@ -275,6 +279,9 @@ impl SceneArgs {
         }
         if let Some(c) = self.cones {
             gi.cones = c;
+        }
+        if let Some(t) = self.turn_cones {
+            gi.turn_cones = t == OnOff::On;
         }
         if let Some(i) = self.injection {
             gi.injection = i;

@@ -82,6 +82,12 @@ pub struct BenchArgs {
     /// measured once.
     #[arg(long, requires = "accuracy", value_name = "K", value_parser = clap::value_parser!(u32).range(2..=64))]
     pub lattices: Option<u32>,
+    /// With --accuracy: also split each region's indirect light among the diffuse cones of the
+    /// scene's model, the renderer's (each cone drawn alone) beside the path tracer's light
+    /// through the same cells of the hemisphere (per-cone.csv; docs/benchmarks.md, "Cone by
+    /// cone").
+    #[arg(long, requires = "accuracy", conflicts_with_all = ["layouts", "study"])]
+    pub per_cone: bool,
     /// With --study: only the variants whose name contains this text.
     #[arg(long, requires = "study", value_name = "TEXT")]
     pub only: Option<String>,

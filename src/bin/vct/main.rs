@@ -532,6 +532,10 @@ fn bench(args: BenchArgs) -> Result<()> {
     check_validation(&ctx)
 }
 
+/// Pixels of each region the per-cone comparison traces (its reference draws `--spp` directions
+/// at each): a region's mean light through a cell then has the noise of 256 × spp / cones draws.
+const PER_CONE_PIXELS: usize = 256;
+
 /// `vct bench --accuracy`: the GI model against path-traced references.
 fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String, Scene)>, out: &Path) -> Result<()> {
     use vct::bench::accuracy;
@@ -545,6 +549,7 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
     let start = std::time::Instant::now();
     let mut rows = Vec::new();
     let mut pans: Vec<String> = Vec::new();
+    let mut cones = Vec::new();
     for (name, mut scene) in scenes {
         if let Some(b) = args.bounces {
             scene.settings.gi.bounces = b;
@@ -581,6 +586,13 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
             v
         };
         for &res in &resolutions {
+            if args.per_cone {
+                progress(&format!("{name} {res}³ cone by cone"));
+                let rows = accuracy::per_cone::measure(ctx, &judged, &default, res, PER_CONE_PIXELS, spp)
+                    .with_context(|| format!("measuring {name} at {res}³ cone by cone"))?;
+                println!("{}", accuracy::per_cone::table(&rows));
+                cones.extend(rows);
+            }
             let direct = accuracy::direct_frame(ctx, &judged, res)?;
             for v in &variants {
                 progress(&format!("{name} {res}³ {}", v.name));
@@ -626,6 +638,12 @@ fn accuracy(ctx: &std::sync::Arc<Context>, args: &BenchArgs, scenes: Vec<(String
     let dir = out.join("accuracy");
     for f in accuracy::write(&dir, &rows, args.study)? {
         println!("wrote {}", f.display());
+    }
+    if !cones.is_empty() {
+        let path = dir.join("per-cone.csv");
+        std::fs::write(&path, accuracy::per_cone::csv(&cones))
+            .with_context(|| format!("writing {}", path.display()))?;
+        println!("wrote {}", path.display());
     }
     if !pans.is_empty() {
         let path = dir.join("pan.csv");
