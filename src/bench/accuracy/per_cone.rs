@@ -17,7 +17,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::{direct_frame, lum, render_timed, Judged, Variant};
+use super::{lum, render_timed, Judged, Variant};
 use crate::error::Result;
 use crate::gpu::Context;
 use crate::reference::pathtrace::PathTracer;
@@ -57,11 +57,13 @@ fn pixels_of_regions(j: &Judged, most: usize) -> Vec<Vec<usize>> {
 }
 
 /// Measures the scene's own model `gi` on `j` at `resolution`, cone by cone, over up to
-/// `pixels` pixels a region, the reference drawing `samples` directions at each. The cone set is
-/// measured unturned (`GiFile::turn_cones` off), so each cone keeps its cell at every pixel.
+/// `pixels` pixels a region, the reference drawing `samples` directions at each; `direct` is the
+/// renderer's direct-light frame (`direct_frame`). The cone set is measured unturned
+/// (`GiFile::turn_cones` off), so each cone keeps its cell at every pixel.
 pub fn measure(
     ctx: &Arc<Context>,
     j: &Judged,
+    direct: &(Vec<Vec3>, Vec<u8>),
     gi: &GiFile,
     resolution: u32,
     pixels: usize,
@@ -94,7 +96,6 @@ pub fn measure(
         .collect();
 
     // The renderer: each cone alone, its indirect light (full minus direct) times its weight.
-    let direct = direct_frame(ctx, j, resolution)?;
     let mut vct = vec![vec![Vec3::ZERO; dirs.len()]; picked.len()];
     for (k, cone) in cones.iter().enumerate() {
         let alone = Variant::model(&format!("cone {k}"), GiFile { only_cone: Some(k as u32), ..gi.clone() });
