@@ -79,6 +79,10 @@ pub fn accuracy(
                 cones.extend(rows);
             }
             for v in &variants {
+                // A clipmap's voxels are its own (LEVELSxRES), whatever `--res` says: measured once.
+                if v.clipmap.is_some() && res != resolutions[0] {
+                    continue;
+                }
                 progress(&format!("{name} {res}³ {}", v.name));
                 let mut row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
                     .with_context(|| format!("measuring {name} {} at {res}³", v.name))?;
