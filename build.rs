@@ -6,6 +6,9 @@
 //!
 //! The stage comes from the extension (`.vert .tesc .tese .geom .frag .comp`); `#include`
 //! resolves from `shaders-glsl/common/`. A compile error fails the build naming file and line.
+//!
+//! It also says where glslang came from: the distribution's packages (prepared by
+//! `scripts/shaderc-system.sh` into `SHADERC_LIB_DIR`) or the `shaderc` crate's source build.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -53,7 +56,25 @@ fn config_rs(header: &str) -> String {
     rs
 }
 
+/// Says which glslang the `shaderc` crate linked, by the rule its build script follows: the
+/// `shaderc-from-source` feature forces the source build; otherwise an archive in
+/// `SHADERC_LIB_DIR` is linked, and without one glslang is built from source.
+fn report_glslang() {
+    println!("cargo:rerun-if-env-changed=SHADERC_LIB_DIR");
+    let dir = std::env::var("SHADERC_LIB_DIR").ok();
+    let archive = dir.as_ref().map(|d| Path::new(d).join("libshaderc_combined.a"));
+    let message = if std::env::var("CARGO_FEATURE_SHADERC_FROM_SOURCE").is_ok() {
+        "glslang built from source (feature shaderc-from-source)".to_string()
+    } else if let Some(a) = archive.filter(|a| a.is_file()) {
+        format!("glslang linked from the system's packages ({})", a.display())
+    } else {
+        "glslang built from source (no system shaderc prepared; `make deps` prepares it)".to_string()
+    };
+    println!("cargo:warning={message}");
+}
+
 fn main() {
+    report_glslang();
     let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap()).join("shaders-glsl");
     let common = root.join("common");
     let out = PathBuf::from(std::env::var("OUT_DIR").unwrap());

@@ -1,9 +1,11 @@
 #!/bin/bash
-# Runs on a lent GPU machine, from the repository root, after scripts/device-prepare.sh: the
-# benches of docs/benchmarks.md ("On a GPU") in one call, each step bounded so that the whole
-# stays inside BUDGET seconds (default 330) and the results always come back, as $OUT/w.tgz
+# Runs on a lent GPU machine, from the repository root, after scripts/device-prepare.sh: the benches
+# behind the report's GPU figures (docs/report/README.md) in one call, each step bounded so that the
+# whole stays inside BUDGET seconds (default 330) and the results always come back, as $OUT/w.tgz
 # (data, charts and logs; no images or references) and $OUT/img.tgz (a few renders).
 # STEPS (a bash regex) runs only the steps whose names match, e.g. STEPS='persp|acc-layouts'.
+# COMMIT names the commit measured in the stamp. Unpacked here, the run goes into the report with
+# `vct bench --report docs/report --rewrite --gpu w` (its own section, stamped with the device).
 R=$PWD; W=/tmp/w; V=$R/.gpu/vct
 rm -rf $W; mkdir -p $W/r $W/acc/cache
 for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
@@ -57,6 +59,12 @@ TAIL=6 step acc-cornell 60 $V bench --accuracy --out $W/acc/corn
 # The voxelizer sweep and the stability regimes.
 TAIL=8 step bench 150 $V bench $SP --out $W/bench/main
 TAIL=8 step stability 120 $V bench --stability --out $W/bench/stability
+# The stamp the report's GPU section shows (vct::bench::report::Stamp).
+gpu=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -n1)
+drv=$(nvidia-smi --query-gpu=driver_version --format=csv,noheader | head -n1)
+printf '{"date": "%s", "commit": "%s", "device": "%s", "driver": "NVIDIA %s", "cpu": "%s", "cores": %d, "command": "scripts/device-bench.sh", "suite": "device-bench", "seconds": %d}\n' \
+  "$(date -u '+%F %R')" "${COMMIT:-unknown}" "$gpu" "$drv" "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" \
+  "$(nproc)" "$(( $(date +%s) - T0 ))" >$W/stamp.json
 cd "$(dirname $W)" && tar czf $OUT/w.tgz --exclude=cache --exclude='*.exr' --exclude='flip-*' \
   --exclude='indirect-*' --exclude='*.svg' --exclude='r/*.png' "$(basename $W)"
 tar czf $OUT/img.tgz "$(basename $W)"/r/{cornell,s1080-resident,s360-s1,s360-persp}.png; ls -la $OUT

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes the hostile-geometry set in assets/hostile/ (issue "hostile geometry"): meshes made of
-the triangles real assets are full of and voxelizers get wrong. Each fills roughly the cube
-[-1, 1]^3, so at 128^3 a voxel is 1/64 of a unit. Deterministic (fixed seeds); rerun to
+"""Writes the hostile-geometry set in assets/hostile/: meshes made of the triangles real assets
+are full of and voxelizers get wrong. Each fills roughly the cube [-1, 1]^3, so at 128^3 a voxel
+is 1/64 of a unit. Deterministic (fixed seeds); rerun to
 regenerate:  python3 scripts/hostile-meshes.py"""
 import math
 import os

@@ -1,21 +1,36 @@
 #!/usr/bin/env bash
 # Installs the system packages vct needs for building, rendering and testing on Debian 12 or
-# Ubuntu 22.04+, skipping those already present. Uses sudo when not run as root.
+# Ubuntu 22.04+, skipping those already present (through sudo when not root), and prepares the
+# distribution's shaderc for the build (scripts/shaderc-system.sh). Only where that shaderc is
+# missing or does not link does it install what building glslang from source takes (cmake,
+# ninja, git, python3).
 set -euo pipefail
+scripts_dir="$(cd "$(dirname "$0")" && pwd)"
 
-packages=(libvulkan1 mesa-vulkan-drivers vulkan-validationlayers xvfb xauth cmake ninja-build python3 g++ git
-          libxkbcommon-x11-0 libx11-xcb1 fonts-dejavu-core)
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+updated=""
+# install [--optional] PACKAGE...: installs those not yet installed; an optional set that the
+# distribution lacks is reported, not fatal.
+install() {
+    local optional=""
+    [ "$1" = --optional ] && { optional=1; shift; }
+    local missing=() p
+    for p in "$@"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+    done
+    ((${#missing[@]})) || return 0
     echo "installing: ${missing[*]}"
-    sudo=""
-    [ "$(id -u)" -eq 0 ] || sudo="sudo"
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+    [ -n "$updated" ] || { $sudo apt-get update -qq; updated=1; }
+    if ! DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null; then
+        [ -n "$optional" ] || return 1
+        echo "not available here: ${missing[*]}"
+    fi
+}
+
+install libvulkan1 mesa-vulkan-drivers vulkan-validationlayers xvfb xauth g++ \
+    libxkbcommon-x11-0 libx11-xcb1 fonts-dejavu-core
+install --optional libshaderc-dev glslang-dev spirv-tools
 
 if ! command -v cargo >/dev/null 2>&1; then
     if [ -x "$HOME/.cargo/bin/cargo" ]; then
@@ -25,3 +40,9 @@ if ! command -v cargo >/dev/null 2>&1; then
     fi
     exit 1
 fi
+
+# The distribution's shaderc, glslang and SPIRV-Tools, merged into one archive for the
+# `shaderc` crate (found through .cargo/config.toml); without it the crate builds glslang from
+# source, which needs these.
+"$scripts_dir/shaderc-system.sh" "$scripts_dir/../.cache/shaderc"
+[ -f "$scripts_dir/../.cache/shaderc/libshaderc_combined.a" ] || install cmake ninja-build git python3

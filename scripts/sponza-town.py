@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes "Sponza town": NX x NZ copies of Dabrovic Sponza side by side (courtyards in a town
 block), with the three Sponza views of assets/scenes/ set in the middle copy. It is the large
-scene of docs/benchmarks.md, "Clipmaps", where one fitted grid can no longer resolve what the
+scene of docs/design/clipmaps.md, where one fitted grid can no longer resolve what the
 camera sees and clipmaps (Freed 2018 §2.3.2; Wicked Engine's VXGI) are meant to pay. The
 middle copy keeps Sponza's own coordinates, so the views' cameras and sun are unchanged.
 

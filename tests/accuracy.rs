@@ -1,8 +1,8 @@
-//! Issue "Indirect light that agrees with the path tracer": per-region indirect light on the
-//! Cornell box against a path-traced reference kept in assets/reference, multiple bounces, light
-//! from emitters against the analytic view factor, and one test per fixed cause of the dark
-//! indirect light that fails with the thesis' model (the switch is `GiFile::thesis()` or the
-//! single option named in the test).
+//! Indirect light that agrees with the path tracer: per-region indirect light on the Cornell box
+//! against a path-traced reference kept in assets/reference, multiple bounces, light from emitters
+//! against the analytic view factor, and one test per cause of the thesis' model's dark indirect
+//! light, which holds with the renderer's model and fails with the thesis' (the switch is
+//! `GiFile::thesis()` or the single option named in the test).
 //!
 //! The reference images are regenerated with
 //!   vct reference --width 128 --height 128 --bounces 1 --spp 4096 --exr assets/reference/cornell-spot-128-b1.exr --out /tmp/b1.png
@@ -116,8 +116,8 @@ fn cornell_regions_get_the_reference_indirect_light() {
 /// Cause: a cone reads a footprint round its axis, but stands for its whole cell of the
 /// hemisphere. From the short box's top two cones of sixteen meet dark features on their axes (the
 /// tall box's dim front; the walls above the spot's edge) while their cells' light lies beside
-/// them, so with the set fixed the top got 0.74 of the reference's indirect light at 64³, and 0.81
-/// at 256³ (docs/benchmarks.md, "Cone by cone"). Turned by pixel and resolved over 3×3 pixels,
+/// them, so with the set fixed the top gets 0.74 of the reference's indirect light at 64³, and 0.81
+/// at 256³ (docs/design/cones.md). Turned by pixel and resolved over 3×3 pixels,
 /// the set samples each cell in nine directions.
 #[test]
 fn turning_the_cones_by_pixel_gives_the_short_boxs_top_its_light() {
@@ -142,21 +142,21 @@ fn turning_the_cones_by_pixel_gives_the_short_boxs_top_its_light() {
 }
 
 /// Cause: a surface lying on a voxel face is written into the voxels of both its sides, and the
-/// far one, unlit, doubled the surface's thickness edge-on: a cone grazing a lit wall gathered
+/// far one, unlit, doubles the surface's thickness edge-on: a cone grazing a lit wall gathers
 /// half its light. The fitted grid puts the Cornell room's walls on voxel faces, and at 256³ the
-/// floor, which gathers the side walls' light at grazing angles, got 0.73 of the reference's
-/// indirect light (0.85 with the lattice moved by 0.02 voxel along x; along y or z, 0.73). The
-/// directional chains now leave that far voxel empty where they see the face edge-on
-/// (gi/filter_aniso.comp), and every region lies in the issue's band at 256³.
+/// floor, which gathers the side walls' light at grazing angles, gets 0.73 of the reference's
+/// indirect light that way (0.85 with the lattice moved by 0.02 voxel along x; along y or z,
+/// 0.73). The directional chains leave that far voxel empty where they see the face edge-on
+/// (gi/filter_aniso.comp), and every region lies within ±20% at 256³.
 #[test]
 fn a_wall_on_a_voxel_face_gives_a_grazing_cone_all_its_light() {
     assert_regions_in(&region_ratios(GiFile::default(), 256), 0.8..=1.2, "256³");
 }
 
 /// Injection from the voxels (the default) gives every region the reference's indirect light
-/// within the issue's band (±20%) at 64³. Cause: injection from the texels lights a voxel a texel
-/// reaches whole, across a shadow edge too, and the short box's front face, which gathers the
-/// floor beside the box's shadow, got 1.20-1.26 of the reference's.
+/// within ±20% at 64³. Cause: injection from the texels lights a voxel a texel reaches whole,
+/// across a shadow edge too, and the short box's front face, which gathers the floor beside the
+/// box's shadow, gets 1.20-1.26 of the reference's that way.
 #[test]
 fn injection_from_the_voxels_keeps_every_region_in_band() {
     use vct::scene::file::Injection;
@@ -171,14 +171,14 @@ fn injection_from_the_voxels_keeps_every_region_in_band() {
 
 #[test]
 fn a_warped_grid_keeps_the_regions_indirect_light() {
-    // Issue "Detail where the camera is": cones march a warped grid (Freed 2018 §4.6.1) in
-    // grid space, sampling each texel where the warp put it, at the level of the local texel
-    // size, and start clear of the texels they leave. The camera stands outside the room, so
-    // the warp's finest texels lie at the room's open front and its coarsest, four grid voxels
-    // deep, on the walls the grid is fitted to: the light is coarser than the even grid's
-    // (measured 1.07-1.43 of the reference's, against 0.98-1.20), hence the wider band. Cones
-    // that sample the warped texture at unwarped places, or start inside their own deep texels,
-    // leave regions at a quarter of their light (measured 0.23 on the back wall).
+    // Cones march a warped grid (Freed 2018 §4.6.1) in grid space, sampling each texel where the
+    // warp put it, at the level of the local texel size, and start clear of the texels they leave.
+    // The camera stands outside the room, so the warp's finest texels lie at the room's open front
+    // and its coarsest, four grid voxels deep, on the walls the grid is fitted to: the light is
+    // coarser than the even grid's (measured 1.07-1.43 of the reference's, against 0.98-1.20),
+    // hence the wider band. Cones that sample the warped texture at unwarped places, or start
+    // inside their own deep texels, leave regions at a quarter of their light (measured 0.23 on the
+    // back wall).
     warped_regions_within(WarpChoice::Function(vct::voxel::warp::THESIS_END_SLOPE), 0.7..=1.5);
 }
 
@@ -202,9 +202,8 @@ fn a_perspective_grid_keeps_the_regions_indirect_light() {
 
 /// Mean indirect light on the Cornell ceiling with `bounces` bounces, at 64³: there one bounce
 /// gives the ceiling the reference's light (measured 1.02 of it), so what the next bounces add is
-/// theirs. At 32³ one bounce already gave it 1.32 of the reference's (1.23 before the far voxel of
-/// a wall on a voxel face was left out edge-on), and the second bounce added 9% (the path
-/// tracer's adds 14%; 17% here).
+/// theirs. At 32³ one bounce already gives it 1.32 of the reference's, and the second bounce
+/// adds 9% (the path tracer's adds 14%; 17% here).
 fn ceiling_indirect(bounces: u32) -> f32 {
     let mut scene = cornell_128();
     scene.settings.gi.bounces = bounces;
@@ -286,8 +285,8 @@ fn an_emissive_square_alone_lights_the_floor_in_its_colour() {
 
 /// The emissive square as an area light (`scene::area`): the floor's direct light is the
 /// polygon's exact irradiance, under the square and a metre beyond its edge, and the square's
-/// voxels no longer emit, so the gather does not count its light a second time (the square is
-/// black: the floor's full image is its direct light). As a voxel emitter the same floor got
+/// voxels do not emit, so the gather does not count its light a second time (the square is
+/// black: the floor's full image is its direct light). As a voxel emitter the same floor gets
 /// 1.19× the analytic value under a larger square, blotchy near small ones.
 #[test]
 fn an_emissive_quad_as_an_area_light_gives_the_exact_irradiance_once() {
@@ -414,8 +413,9 @@ fn furnace_mean(gi: GiFile) -> f32 {
     lum(mean(&render(&scene, View::Indirect, 32).linear()))
 }
 
-/// Causes: the isotropic average dilutes a wall at coarse levels, cones that stop 95% opaque
-/// dropped their last 5%, and fewer than two samples a texel let cones through one-texel walls.
+/// Causes: the isotropic average dilutes a wall at coarse levels, a cone that stops 95% opaque
+/// and drops its last 5% gathers too little, and fewer than two samples a texel let cones
+/// through one-texel walls.
 #[test]
 fn a_closed_emissive_box_gathers_exactly_its_radiance() {
     let got = furnace_mean(GiFile::default());
@@ -470,9 +470,9 @@ fn lobe_albedo(n_v: f32, roughness: f32, f0: f32) -> f32 {
 /// The closed emissive box again, its faces reflecting through a rough specular lobe alone
 /// (albedo 0, f0 0.04, roughness 0.8): every specular cone sees radiance 1, so each pixel's
 /// specular light is the lobe's directional albedo at its view angle, 0.021 face-on to 0.050 at
-/// grazing. Cause: the cone's light was weighted by Schlick's Fresnel at the view angle, which
-/// tends to 1 at grazing angles whatever the roughness (0.61 at n.v = 0.1, 0.20 at 0.3); the
-/// walls seen edge-on here reflected up to 15 times their lobe's light, and Sponza's floor 2.6
+/// grazing. Cause: Schlick's Fresnel at the view angle, as the cone's weight, tends to 1 at
+/// grazing angles whatever the roughness (0.61 at n.v = 0.1, 0.20 at 0.3); weighted by it, the
+/// walls seen edge-on here reflect up to 15 times their lobe's light, and Sponza's floor 2.6
 /// times the path tracer's indirect light.
 #[test]
 fn a_rough_surface_reflects_its_lobes_share_of_the_surround_at_every_angle() {

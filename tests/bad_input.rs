@@ -58,8 +58,8 @@ fn obj_with_out_of_range_indices_names_the_file() {
     assert!(e.contains("oob.obj") && e.contains("out of bounds"), "{e}");
     let p = write(&d, "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n");
     assert!(load_err(&p).contains("neg.obj"));
-    // Relative texture/normal indices before the first element, and huge ones, overflowed
-    // tobj's index arithmetic (a panic, found by the fuzzer).
+    // Relative texture/normal indices before the first element, and huge ones, overflow
+    // tobj's index arithmetic (it panics): they must be refused before tobj reads them.
     for (name, face) in [("vt.obj", "f 1/-4 2/1 3/1"), ("vn.obj", "f 1//1 2//1 3//-9"), ("big.obj", "f 1 2 4294967296")]
     {
         let p = write(&d, name, &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n{face}\n"));

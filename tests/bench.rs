@@ -1,6 +1,8 @@
-//! Issue "Benchmarks": `vct bench --quick` (the CI smoke run) writes CSV, JSON and the
-//! charts, with the expected columns and one row per configuration, the point voxelizer's
-//! density sweep among them.
+//! `vct bench --report DIR --quick` (the CI variant of the report's suite) writes the sweep's
+//! CSV, JSON and charts, with the expected columns and one row per configuration, the point
+//! voxelizer's density sweep among them, and the report's pages: every section present and its
+//! tables filled, every chart inline, nothing from the network. `vct bench --accuracy` measures
+//! layouts and lattice placements.
 
 use vct::bench::accuracy::{distance_bands, region_log_error, RegionRow};
 
@@ -9,21 +11,121 @@ use vct::bench::accuracy::{distance_bands, region_log_error, RegionRow};
 fn bench(name: &str, args: &[&str]) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("vct-{name}-{}", std::process::id()));
     let out = dir.join("run");
+    vct_bench(&[args, &["--out", out.to_str().unwrap()]].concat());
+    out
+}
+
+/// Runs `vct bench ARGS --validation` (ARGS holding the output folder) and returns its output
+/// once it succeeded.
+fn vct_bench(args: &[&str]) -> String {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
         .arg("bench")
         .args(args)
-        .args(["--validation", "--out", out.to_str().unwrap()])
+        .arg("--validation")
         .env("XDG_RUNTIME_DIR", std::env::var("XDG_RUNTIME_DIR").unwrap_or("/tmp".into()))
         .output()
         .unwrap();
     let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(o.status.success(), "{text}");
-    out
+    text
 }
 
 #[test]
-fn quick_bench_writes_csv_json_and_charts() {
-    let out = bench("bench", &["--quick"]);
+fn quick_report_writes_the_suites_data_and_both_pages() {
+    let dir = std::env::temp_dir().join(format!("vct-report-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    vct_bench(&["--report", dir.to_str().unwrap(), "--quick"]);
+    report_pages_are_whole(&dir);
+    report_rewrites_from_its_data_and_takes_a_gpu_run(&dir);
+    quick_sweep_writes_csv_json_and_charts(&dir.join("data/sweep"));
+}
+
+/// The report's README.md and index.html: the stamp, every section with a filled table, every
+/// chart inline as SVG, and nothing a browser would fetch.
+fn report_pages_are_whole(dir: &std::path::Path) {
+    let md = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    for stamp in ["| commit |", "| device |", "| driver |", "| host |", "| command |"] {
+        assert!(md.contains(stamp), "README.md has no {stamp} line");
+    }
+    // Each section: its heading, then a table with a header, a rule and at least one row, no
+    // cell empty.
+    let sections: Vec<&str> = md.split("\n## ").skip(1).collect();
+    assert_eq!(sections.len(), vct::bench::report::page::SECTIONS.len(), "{md}");
+    for s in &sections {
+        let rows: Vec<&str> = s.lines().filter(|l| l.starts_with('|')).collect();
+        assert!(rows.len() >= 3, "a section without a filled table:\n{s}");
+        for r in rows {
+            assert!(!r.contains("|  |") && !r.contains("| |") || r.starts_with("|  |  |"), "an empty cell: {r}");
+        }
+    }
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    for id in vct::bench::report::page::SECTIONS {
+        let start = html.find(&format!("<section id=\"{id}\">")).unwrap_or_else(|| panic!("no section {id}"));
+        let end = start + html[start..].find("</section>").unwrap();
+        let body = &html[start..end];
+        assert!(body.contains("<table>") && body.contains("<td>"), "section {id} has no filled table");
+    }
+    for chart in [
+        "speed_vs_accuracy",
+        "voxelize_time",
+        "passes_stacked",
+        "tess_over_raster",
+        "cost_vs_triangles",
+        "storage_memory_vs_flip",
+        "storage_time_vs_flip",
+        "points_density",
+        "gi_scale",
+        "accuracy",
+        "stability_tess_limit",
+        "stability_raster_cracks",
+        "stability_subvoxel",
+        "stability_light_leaking",
+        "stability_temporal_flicker",
+        "stability_self_illumination",
+    ] {
+        let start = html.find(&format!("id=\"chart-{chart}\"")).unwrap_or_else(|| panic!("no chart {chart}"));
+        let end = start + html[start..].find("</figure>").unwrap();
+        let figure = &html[start..end];
+        assert!(figure.contains("<svg") && figure.contains("</svg>") && figure.len() > 2000, "chart {chart} is empty");
+    }
+    // Offline: no script, no stylesheet or image fetched, no link off the page (the SVG
+    // namespace is a name, not a fetch).
+    let fetches = html.replace("xmlns=\"http://www.w3.org/2000/svg\"", "");
+    for bad in ["<script", "<link", "src=\"http", "href=\"http", "url(http", "@import"] {
+        assert!(!fetches.contains(bad), "index.html contains {bad}");
+    }
+}
+
+/// `--rewrite` writes the same pages from the data alone; `--gpu RUN` adds a GPU run's data as
+/// a section of its own, and a folder with no run in it is an error naming it.
+fn report_rewrites_from_its_data_and_takes_a_gpu_run(dir: &std::path::Path) {
+    let before = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    vct_bench(&["--report", dir.to_str().unwrap(), "--rewrite"]);
+    assert_eq!(std::fs::read_to_string(dir.join("README.md")).unwrap(), before);
+    let run = dir.with_extension("gpu-run");
+    std::fs::create_dir_all(run.join("bench/main")).unwrap();
+    std::fs::copy(dir.join("data/sweep/results.json"), run.join("bench/main/results.json")).unwrap();
+    let copy = dir.with_extension("copy");
+    let _ = std::fs::remove_dir_all(&copy);
+    std::fs::create_dir_all(&copy).unwrap();
+    std::fs::create_dir_all(copy.join("data/sweep")).unwrap();
+    for f in ["stamp.json", "sweep/results.json"] {
+        std::fs::copy(dir.join("data").join(f), copy.join("data").join(f)).unwrap();
+    }
+    vct_bench(&["--report", copy.to_str().unwrap(), "--rewrite", "--gpu", run.to_str().unwrap()]);
+    let md = std::fs::read_to_string(copy.join("README.md")).unwrap();
+    assert!(md.contains("## On a GPU") && md.contains("### How fast is each voxelizer"), "{md}");
+    let html = std::fs::read_to_string(copy.join("index.html")).unwrap();
+    assert!(html.contains("<section id=\"gpu-voxelizers\">") && html.contains("id=\"chart-gpu-speed_vs_accuracy\""));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vct"))
+        .args(["bench", "--report", copy.to_str().unwrap(), "--rewrite", "--gpu", "/nonexistent-gpu-run"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("/nonexistent-gpu-run"), "{err}");
+}
+
+fn quick_sweep_writes_csv_json_and_charts(out: &std::path::Path) {
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let mut lines = csv.lines();
     assert_eq!(lines.next().unwrap(), vct::bench::CSV_HEADER);
@@ -108,19 +210,16 @@ fn quick_bench_writes_csv_json_and_charts() {
         "flip_against_recall_cornell",
         "gi_scale",
     ] {
-        for ext in ["png", "svg"] {
-            let p = out.join(format!("{chart}.{ext}"));
-            assert!(std::fs::metadata(&p).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", p.display());
-        }
+        // The report keeps each chart as SVG only.
+        let p = out.join(format!("{chart}.svg"));
+        assert!(std::fs::metadata(&p).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", p.display());
     }
-    // The reference was cached beside the run: a second run would not path-trace again.
-    assert!(std::fs::read_dir(out.parent().unwrap().join("cache")).unwrap().count() >= 2);
-    replot_draws_what_a_results_file_holds_and_refuses_an_empty_one(&out, &json);
+    replot_draws_what_a_results_file_holds_and_refuses_an_empty_one(out, &json);
 }
 
 /// `vct bench --replot DIR` reads a results file a user may hand it: one configuration draws
-/// what it can, and one without any is an error naming the file, within seconds (an empty
-/// series once made plotters search for axis ticks forever).
+/// what it can, and one without any is an error naming the file, within seconds (on an empty
+/// series plotters searches for axis ticks forever).
 fn replot_draws_what_a_results_file_holds_and_refuses_an_empty_one(out: &std::path::Path, json: &serde_json::Value) {
     let replot = |name: &str, keep: usize| {
         let dir = out.parent().unwrap().join(name);
@@ -155,9 +254,9 @@ fn replot_draws_what_a_results_file_holds_and_refuses_an_empty_one(out: &std::pa
     assert!(err.contains("no-rows/results.json") && err.contains("no configuration"), "{err}");
 }
 
-/// Issue "detail where the camera is": `vct bench --accuracy --layouts` measures each scene on
-/// its fitted grid and on warped grids of the same voxels (Freed 2018 §4.6.1) against the
-/// path tracer, with the volume's memory, and charts FLIP against memory.
+/// `vct bench --accuracy --layouts` measures each scene on its fitted grid and on warped grids of
+/// the same voxels (Freed 2018 §4.6.1) against the path tracer, with the volume's memory, and
+/// charts FLIP against memory.
 #[test]
 fn accuracy_bench_compares_layouts_at_the_same_voxels() {
     let out = bench("layouts", &["--accuracy", "--quick", "--layouts", "--warp-slopes", "0.5,0.25"]);

@@ -70,8 +70,8 @@ fn one_level_is_the_snapped_following_volume() {
 /// clipmap snaps to, so level 0 (64 of them around the camera) voxelizes the room alike. What
 /// is left differs in the mips (they are grouped from other corners). Three levels must render
 /// what one does: every face of level 0 lies beyond the room (open: `Clipmap::open`), so no
-/// sample moves out to, or blends into, a coarser level (centred on the camera, they differed
-/// by 0.4%).
+/// sample moves out to, or blends into, a coarser level (levels centred on the camera instead
+/// differ by 0.4%).
 #[test]
 fn levels_agree_with_the_fitted_grid_where_the_finest_holds_the_room() {
     let scene = inside();

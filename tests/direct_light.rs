@@ -1,5 +1,5 @@
-//! Issue "Foundation": the default scene's direct-light frame, checked against analytic
-//! values and CPU ray casts, plus determinism. Runs on lavapipe with validation on.
+//! The default scene's direct-light frame, checked against analytic values and CPU ray casts, plus
+//! determinism. Runs on lavapipe with validation on.
 
 mod common;
 

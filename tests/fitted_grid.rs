@@ -1,8 +1,7 @@
-//! Issue "Model no more than the scene needs", fitted grids: each axis of the voxel grid gets
-//! its own (power-of-two) count fitted to the scene's bounds, with cubic voxels. A non-cubic
-//! grid is checked against exact coverage, survives the binvox round trip, renders the same
-//! image as the bounding cube at the same voxel size, and bad dims are errors naming them.
-//! Lavapipe, validation on.
+//! Fitted grids: each axis of the voxel grid gets its own (power-of-two) count fitted to the
+//! scene's bounds, with cubic voxels. A non-cubic grid is checked against exact coverage, survives
+//! the binvox round trip, renders the same image as the bounding cube at the same voxel size, and
+//! bad dims are errors naming them. Lavapipe, validation on.
 
 mod common;
 

@@ -1,6 +1,7 @@
-//! Issue "Global illumination": the radiance mip chain against a CPU box filter, the cone
+//! Global illumination: the radiance mip chain against a CPU box filter, the cone
 //! tracer against a CPU model, and the Cornell box's global illumination (colour bleeding,
-//! a lit ceiling, ambient occlusion, no light from nowhere, both voxelizers agreeing).
+//! a lit ceiling, ambient occlusion, no light from nowhere, the tessellation and raster
+//! voxelizers agreeing).
 
 mod common;
 
@@ -526,7 +527,7 @@ fn hardware_coverage_is_a_clear_error_where_the_extension_is_missing() {
 #[test]
 fn deferred_tracing_renders_what_forward_tracing_renders() {
     // The set unturned: with it turned by pixel, deferred shading resolves each pixel's gather
-    // from its neighbours' and forward shading cannot (docs/benchmarks.md, "Cone by cone").
+    // from its neighbours' and forward shading cannot (docs/design/cones.md).
     let mut scene = Scene::embedded_default().unwrap();
     scene.settings.gi.turn_cones = false;
     let deferred = render(scene.clone(), options(View::Full, 32));

@@ -1,8 +1,8 @@
-//! Issue "Frame time", screen-space accumulation of the reduced-resolution diffuse cones
-//! (`--gi-accumulate`): on a still camera the image converges towards tracing every pixel (each
-//! pixel is traced once in gi-scale² frames and keeps its trace), and after a jump cut the
-//! history is rejected where the surface changed: the pixels a CPU ray cast finds disoccluded
-//! match a renderer that has no history at all. Lavapipe, validation on.
+//! Screen-space accumulation of the reduced-resolution diffuse cones (`--gi-accumulate`): on a
+//! still camera the image converges towards tracing every pixel (each pixel is traced once in
+//! gi-scale² frames and keeps its trace), and after a jump cut the history is rejected where the
+//! surface changed: the pixels a CPU ray cast finds disoccluded match a renderer that has no
+//! history at all. Lavapipe, validation on.
 
 mod common;
 
@@ -18,7 +18,7 @@ const RES: u32 = 64;
 
 /// The volume is kept while nothing it depends on changes, as in the viewer (the same image to
 /// the bit, tests/reuse_volume.rs): what these tests judge is the screen-space history, and
-/// rebuilding an unchanged volume every frame took most of their time.
+/// rebuilding an unchanged volume every frame would take most of their time.
 fn options(gi_scale: u32, gi_accumulate: bool) -> RenderOptions {
     RenderOptions {
         resolution: Some(RES),
@@ -236,9 +236,9 @@ fn accumulation_under_a_moving_camera_and_a_turning_light_is_as_stable_as_full_r
 }
 
 /// Until a pixel has a trace of its own it shows an estimate: the upsampled light averaged over
-/// frames, whose traced pixels move through the block. Without it such a pixel showed each
-/// frame's upsampling from other traced pixels, and at scale 8 the 64 frames after a cut
-/// flickered. Over the first half cycle of a still view at scale 8: the frame-to-frame change,
+/// frames, whose traced pixels move through the block. Without it such a pixel would show each
+/// frame's upsampling from other traced pixels, and at scale 8 the 64 frames after a cut would
+/// flicker. Over the first half cycle of a still view at scale 8: the frame-to-frame change,
 /// and the distance from full resolution.
 #[test]
 fn pixels_awaiting_their_own_trace_hold_a_steady_estimate() {

@@ -1,9 +1,8 @@
-//! Issue "Frame time", reduced-resolution indirect light (`--gi-scale`): the diffuse cones
-//! traced at one pixel in 4 or 16 and upsampled edge-aware agree with tracing every pixel on
-//! the Cornell box, and no light crosses a silhouette: the pixels beside a depth edge (found by
-//! a CPU ray cast, not by the renderer) match full resolution as well as the rest do. The
-//! specular cone traced with them agrees with per-pixel tracing, and converges to it.
-//! Lavapipe, validation on.
+//! Reduced-resolution indirect light (`--gi-scale`): the diffuse cones traced at one pixel in 4 or
+//! 16 and upsampled edge-aware agree with tracing every pixel on the Cornell box, and no light
+//! crosses a silhouette: the pixels beside a depth edge (found by a CPU ray cast, not by the
+//! renderer) match full resolution as well as the rest do. The specular cone traced with them
+//! agrees with per-pixel tracing, and converges to it. Lavapipe, validation on.
 
 mod common;
 
@@ -66,9 +65,8 @@ fn reduced_resolution_diffuse_light_matches_full_resolution_and_keeps_silhouette
     let count = edges.iter().filter(|&&e| e).count();
     assert!(count > 100, "the test view has silhouettes: {count} edge pixels");
     // Measured, 256², 64³, the diffuse view: 1.0% of the mean over the image and 3.0% beside
-    // the silhouettes at scale 2, 2.7% and 3.9% at scale 4 (3.1 / 4.0 and 4.2 / 4.7% before a
-    // traced pixel showed its own trace). Plain bilinear upsampling (the surface test off) gave
-    // 4.2% and 15.9% at scale 2: light crossing the silhouettes.
+    // the silhouettes at scale 2, 2.7% and 3.9% at scale 4. Plain bilinear upsampling (the
+    // surface test off) gives 4.2% and 15.9% at scale 2: light crossing the silhouettes.
     let full = render(&ctx, &scene, 1);
     for scale in [2, 4] {
         let reduced = render(&ctx, &scene, scale);
@@ -129,8 +127,8 @@ fn the_specular_cone_at_the_gi_scale_agrees_with_per_pixel_tracing_and_converges
     let upsampled = render(RenderOptions { gi_scale: 2, ..base }, 1);
     let up = difference(&upsampled, &full, |_| true);
     let (accumulated, timings) = timed(RenderOptions { gi_scale: 2, gi_accumulate: true, ..base }, 8);
-    // The shading pass's three dispatches are timed within it (docs/benchmarks.md splits the
-    // viewer's frame by them).
+    // The shading pass's three dispatches are timed within it (the report, docs/report/README.md,
+    // splits the viewer's frame by them).
     let ms = |pass: &str| timings.iter().find(|t| t.pass == pass).map(|t| t.ms).unwrap_or(f64::NAN);
     let parts = ["trace", "accumulate", "shade pixels"].map(ms);
     assert!(parts.iter().all(|&p| p > 0.0), "shading's dispatches untimed: {timings:?}");

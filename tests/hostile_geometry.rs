@@ -1,5 +1,5 @@
-//! Issue "Stability", bad input that loads: degenerate, duplicate, tiny-scale and very many
-//! triangles render without validation errors, and what remains is drawn correctly.
+//! Bad input that loads: degenerate, duplicate, tiny-scale and very many triangles render without
+//! validation errors, and what remains is drawn correctly.
 
 mod common;
 

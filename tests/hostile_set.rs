@@ -1,6 +1,6 @@
-//! Issue "hostile geometry": the voxelizers against the exact triangle/box coverage on the
-//! hostile-geometry set (assets/hostile/). Conservative rasterization without the extension
-//! must write every voxel each triangle touches and nothing else; sampling (MSAA) must not.
+//! The voxelizers against the exact triangle/box coverage on the hostile-geometry set
+//! (assets/hostile/). Conservative rasterization without the extension must write every voxel each
+//! triangle touches and nothing else; sampling (MSAA) must not.
 
 mod common;
 

@@ -1,9 +1,8 @@
-//! Issue "frame time", frames in flight without a window: frames submitted through a
-//! `gpu::FrameRing` of two slots (`Renderer::submit_in_flight`, `vct render --in-flight 2`),
-//! each recorded while the one before still runs, give the image of frames waited for one by
-//! one, while the camera moves every frame and the screen-space accumulation reads each
-//! frame's history from the frame before. Synchronization validation, with its check between
-//! submissions, finds no hazard. Lavapipe.
+//! Frames in flight without a window: frames submitted through a `gpu::FrameRing` of two slots
+//! (`Renderer::submit_in_flight`, `vct render --in-flight 2`), each recorded while the one before
+//! still runs, give the image of frames waited for one by one, while the camera moves every frame
+//! and the screen-space accumulation reads each frame's history from the frame before.
+//! Synchronization validation, with its check between submissions, finds no hazard. Lavapipe.
 
 mod common;
 

@@ -6,7 +6,7 @@
 //! texels find, at each light's own stride. The default model keeps, per texel, one mean
 //! direction of the light it reflects (the facing moment) and one lit side per voxel: a
 //! direction is not a sum, so there two lights differ from the sum of each alone by a few
-//! tenths of a percent (docs/benchmarks.md, "Several lights").
+//! tenths of a percent (docs/design/injection.md).
 
 mod common;
 

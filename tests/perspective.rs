@@ -1,9 +1,8 @@
-//! Issue "Detail where the camera is", the perspective warp (Freed 2018 §4.6.2, made projective:
-//! voxel::perspective): its voxelization against exact coverage among its texels, where the
-//! reference clips and maps each triangle with its own code (reference::coverage), for both
-//! exact voxelizers, on triangles in view, reaching behind the camera (clipped at the apex's
-//! side) and leaving the frustum, and on the Cornell box (its indirect light against the path
-//! tracer: tests/accuracy.rs). Lavapipe, validation on.
+//! The perspective warp (Freed 2018 §4.6.2, made projective: voxel::perspective): its voxelization
+//! against exact coverage among its texels, where the reference clips and maps each triangle with
+//! its own code (reference::coverage), for both exact voxelizers, on triangles in view, reaching
+//! behind the camera (clipped at the apex's side) and leaving the frustum, and on the Cornell box
+//! (its indirect light against the path tracer: tests/accuracy.rs). Lavapipe, validation on.
 
 mod common;
 

@@ -1,7 +1,7 @@
-//! Issue "A third voxelizer on equal terms": the point voxelizer (Mavridis & Papaioannou 2011)
-//! against the exact CPU coverage: recall grows with the point density, precision is exact (a
-//! point lies on its triangle), the refinement fills every voxel the camera sees (against a CPU
-//! ray cast through each pixel), a zero-area triangle writes nothing. Lavapipe, validation on.
+//! The point voxelizer (Mavridis & Papaioannou 2011) against the exact CPU coverage: recall grows
+//! with the point density, precision is exact (a point lies on its triangle), the refinement fills
+//! every voxel the camera sees (against a CPU ray cast through each pixel), a zero-area triangle
+//! writes nothing. Lavapipe, validation on.
 
 mod common;
 

@@ -1,6 +1,6 @@
-//! Issue "Benchmarks": the CPU path tracer is the ground truth, so it is checked against
-//! analytic cases — a lit plane, the white furnace, the spot-lit Cornell floor — and `vct
-//! compare` of an image with itself gives FLIP 0.
+//! The CPU path tracer is the ground truth, so it is checked against analytic cases — a lit plane,
+//! the white furnace, the spot-lit Cornell floor — and `vct compare` of an image with itself gives
+//! FLIP 0.
 
 mod common;
 

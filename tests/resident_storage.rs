@@ -1,10 +1,10 @@
-//! Issue "Model no more than the scene needs", sparse storage with residency: on a device with
-//! Vulkan sparse residency (`sparseResidencyImage3D`, `residencyNonResidentStrict`) the
-//! per-voxel textures span the grid with memory bound only to the blocks that hold a brick the
-//! census found (voxel::bricks::Residency, gpu::sparse). They voxelize exactly, render the
-//! dense image, bind what the memory report says, and a write outside the census' bricks is an
-//! error, never a silent hole. On a device without residency (Mesa 22.3's lavapipe) asking for
-//! it is an error naming the missing feature. Validation on.
+//! Sparse storage with residency: on a device with Vulkan sparse residency
+//! (`sparseResidencyImage3D`, `residencyNonResidentStrict`) the per-voxel textures span the grid
+//! with memory bound only to the blocks that hold a brick the census found
+//! (voxel::bricks::Residency, gpu::sparse). They voxelize exactly, render the dense image, bind
+//! what the memory report says, and a write outside the census' bricks is an error, never a silent
+//! hole. On a device without residency (Mesa 22.3's lavapipe) asking for it is an error naming the
+//! missing feature. Validation on.
 //!
 //! The tests that need residency report themselves skipped on a device without it; Mesa 25's
 //! lavapipe offers it (`.ci/run` runs this file on it too, see scripts/lavapipe-residency.sh).

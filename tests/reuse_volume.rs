@@ -1,7 +1,7 @@
-//! Issue "Frame time": the viewer keeps last frame's volume when nothing it depends on changed
+//! The viewer keeps last frame's volume when nothing it depends on changed
 //! (`RenderOptions::reuse_volume`). A still frame then runs no volume pass and shows the same
-//! image; turning the light builds the volume again from the voxels it kept, and the frame
-//! matches a renderer that builds every frame. Lavapipe, validation on.
+//! image; turning the light builds the volume again from the voxels it kept, and the frame matches
+//! a renderer that builds every frame. Lavapipe, validation on.
 
 mod common;
 

@@ -1,5 +1,5 @@
-//! Issue "Stability": each failure regime reproduced with its fix off, and shown to hold with
-//! the fix on (regime 1, the tessellation limit, is in tests/voxelize.rs).
+//! Each failure regime reproduced with its fix off, and shown to hold with the fix on (regime 1,
+//! the tessellation limit, is in tests/voxelize.rs).
 
 mod common;
 

@@ -1,7 +1,7 @@
-//! Issue "Windowed viewer": the viewer under Xvfb (lavapipe presenting through X11) runs N
-//! frames with the validation layer on and no messages, its last frame matches the headless
-//! render of the same scene and camera (also with two frames in flight under synchronization
-//! validation), and a resize recreates the swapchain cleanly.
+//! The windowed viewer under Xvfb (lavapipe presenting through X11) runs N frames with the
+//! validation layer on and no messages, its last frame matches the headless render of the same
+//! scene and camera (also with two frames in flight under synchronization validation), and a resize
+//! recreates the swapchain cleanly.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -69,8 +69,8 @@ fn viewer_frames_match_the_headless_render() {
     viewer_matches_headless("plain", &[], &[]);
 }
 
-/// Issue "detail where the camera is": the viewer refocuses a warped grid on the camera every
-/// frame (Freed 2018 §4.6.1); a still camera's frame is the headless render's.
+/// The viewer refocuses a warped grid on the camera every frame (Freed 2018 §4.6.1); a still
+/// camera's frame is the headless render's.
 #[test]
 fn a_warped_grid_in_the_viewer_matches_the_headless_render() {
     viewer_matches_headless("warped", &[], &["--warp", "function"]);
@@ -83,16 +83,16 @@ fn a_perspective_warp_in_the_viewer_matches_the_headless_render() {
     viewer_matches_headless("perspective", &[], &["--warp", "perspective"]);
 }
 
-/// Issue "detail where the camera is": the viewer recentres clipmap levels on the camera every
-/// frame; a still camera's frame is the headless render's.
+/// The viewer recentres clipmap levels on the camera every frame; a still camera's frame is the
+/// headless render's.
 #[test]
 fn clipmap_levels_in_the_viewer_match_the_headless_render() {
     viewer_matches_headless("clipmap", &[], &["--clipmap", "3"]);
 }
 
-/// Issue "frame time": the viewer keeps two frames in flight (the CPU records one while the GPU
-/// runs the one before, which still reads the shared volumes and per-frame buffers), and
-/// synchronization validation finds no hazard between them or within one.
+/// The viewer keeps two frames in flight (the CPU records one while the GPU runs the one before,
+/// which still reads the shared volumes and per-frame buffers), and synchronization validation
+/// finds no hazard between them or within one.
 #[test]
 fn two_frames_in_flight_raise_no_synchronization_hazard() {
     assert_eq!(vct::gpu::FRAMES_IN_FLIGHT, 2);

@@ -1,6 +1,6 @@
-//! Issue "Voxelization two ways": both voxelizers against the exact CPU coverage on single
-//! triangles that probe each method's weak spots, on the Cornell box, and the averaging,
-//! the failure switches and the .binvox round trip. Lavapipe, validation on.
+//! The tessellation and raster voxelizers against the exact CPU coverage on single triangles that
+//! probe each method's weak spots, on the Cornell box, and the averaging, the failure switches and
+//! the .binvox round trip. Lavapipe, validation on.
 
 mod common;
 
@@ -42,7 +42,7 @@ fn run_triangles(tris: &[[Vec3; 3]], method: VoxelizeMethod, n: u32) -> (Accurac
 
 /// Both methods on `tris`: precision must stay >= 0.99 (no voxel the geometry does not touch);
 /// recall must reach the given minimum for [tess, raster with MSAA]. The minimums sit just
-/// under what each method reaches (README, "Voxelization accuracy"): point sampling misses
+/// under what each method reaches (docs/design/voxelizers.md): point sampling misses
 /// voxels whose corner a slanted face grazes, sample-based rasterization misses triangles
 /// that cover no sample.
 /// Conservative rasterization (the triangle grown in the geometry shader) must be exact on

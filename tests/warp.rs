@@ -1,8 +1,8 @@
-//! Issue "Detail where the camera is", voxel warping (Freed 2018 §4.6.1): a warped grid's
-//! voxelization against exact coverage in warped space, where each texel is the box the
-//! reference finds by inverting the thesis' cubic on its own (by bisection, not the renderer's
-//! Newton steps), for both voxelizers, on single triangles and on the Cornell box; and the warp
-//! is really there (the texels differ from the even grid's). Lavapipe, validation on.
+//! Voxel warping (Freed 2018 §4.6.1): a warped grid's voxelization against exact coverage in
+//! warped space, where each texel is the box the reference finds by inverting the thesis' cubic
+//! on its own (by bisection, not the renderer's Newton steps), for both exact voxelizers
+//! (tessellation and conservative raster), on single triangles and on the Cornell box; and the
+//! warp is really there (the texels differ from the even grid's). Lavapipe, validation on.
 
 mod common;
 

@@ -25,10 +25,10 @@ vec3 fresnel_schlick(vec3 f0, float cos_theta) {
 // even radiance `cook_torrance`'s GGX lobe (the same D, G and F) reflects towards a view at
 // `n_v` from the normal (Karis 2013's split sum, its second factor). This weights the specular
 // cone's light, whose radiance stands for the lobe's surround. Schlick's Fresnel at the view
-// angle, used before, tends to 1 at grazing angles whatever the roughness, where a rough lobe
-// reflects little (masked, and spread below the horizon): at roughness 0.8 and f0 0.04 it gave
-// 0.61 at n.v = 0.1 and 0.20 at 0.3 against 0.042 and 0.031, and Sponza's floor, seen at such
-// angles, gathered 2.6 times the path tracer's indirect light (docs/benchmarks.md).
+// angle would not do: it tends to 1 at grazing angles whatever the roughness, where a rough lobe
+// reflects little (masked, and spread below the horizon): at roughness 0.8 and f0 0.04 it gives
+// 0.61 at n.v = 0.1 and 0.20 at 0.3 against 0.042 and 0.031, and weighted by it Sponza's floor,
+// seen at such angles, gathers 2.6 times the path tracer's indirect light (docs/design/cones.md).
 // Integrated here, with no table to bind: the lobe's half vectors importance-sampled at
 // SPECULAR_ALBEDO_SAMPLES Hammersley points (within 6% of a 32768-sample integral wherever
 // n.v >= 0.03, within 2% at most angles).

@@ -1,6 +1,6 @@
 // Voxel cone tracing (Freed 2018 §4.5.2, Listing 4.1; Crassin et al. 2011 §4): front-to-back
 // accumulation of the pre-filtered radiance volume along a cone. Distances are in voxels of
-// level 0. Three choices are parameters, each measured in docs/benchmarks.md (the study):
+// level 0. Three choices are parameters, each measured in the study of docs/design/cones.md:
 // - the sampled level: log2 of the cone diameter plus an offset (the level rule's and the
 //   user's), and, with CONE_FLAG_SELF_CLAMP, no coarser than keeps the trilinear filter's
 //   support off the receiving surface's own voxels;
@@ -60,15 +60,15 @@ vec4 level0_sample(sampler3D level0, vec3 pos);
 // The chains start at level 1 (their mip 0). `face` holds, per axis, the share of that chain's
 // light that can reach the cone (see `facing_across`).
 // With CONE_FLAG_CHAIN_BOX each chain is read as boxes along its own axis and the chains' optical
-// depths are added (a study variant, measured in docs/benchmarks.md, "Opacity along the chains";
-// not the default). A chain's texel holds the opacity of crossing it whole along its axis
-// (gi/filter_aniso.comp composites along it), so read at the nearest texel along that axis and
-// corrected for the step (accumulate) it counts once per texel crossed, at any sample phase,
-// where trilinear filtering makes a tent of a one-texel wall that a corrected cone passes
-// through. Across the axis it stays trilinear: a texel's opacity there is a lateral average of
-// cover. And a cone crossing a wall aslant advances |d_a| of its step along each axis a, so each
-// chain's depth, -ln(1 - alpha_a), counts by |d_a|: blended as opacities by d_a^2 (the default),
-// a wall crossed at a grazing angle lets a tenth of the light through.
+// depths are added (a study variant, measured in docs/design/cones.md; not the default). A chain's
+// texel holds the opacity of crossing it whole along its axis (gi/filter_aniso.comp composites
+// along it), so read at the nearest texel along that axis and corrected for the step (accumulate)
+// it counts once per texel crossed, at any sample phase, where trilinear filtering makes a tent of
+// a one-texel wall that a corrected cone passes through. Across the axis it stays trilinear: a
+// texel's opacity there is a lateral average of cover. And a cone crossing a wall aslant advances
+// |d_a| of its step along each axis a, so each chain's depth, -ln(1 - alpha_a), counts by |d_a|:
+// blended as opacities by d_a^2 (the default), a wall crossed at a grazing angle lets a tenth of
+// the light through.
 
 // Where chain `c` (of axis `a`) is read for a sample at `pos` of chain mip `l`: in its block of the
 // atlas, and with `box` at the centre of its texel along `a` (of mip floor(l)).
@@ -105,8 +105,8 @@ vec4 sample_chains(sampler3D tex, vec3 pos, vec3 w, vec3 chain, float lod, vec3 
 // texel is s = 2^L voxels wide; the surface's texels have their centres within s/2 + surface of
 // the plane, and trilinear filtering reaches texel centres up to s away. So a sample sees none of
 // its own surface while height >= 1.5 s + surface. Without this, a cone's first coarse samples
-// are darkened by the very surface it leaves (opaque, and dark from behind), which is what made
-// ceilings dim (the furnace: a voxel's second bounce gathered 20% too little). A point on a
+// are darkened by the very surface it leaves (opaque, and dark from behind), which makes
+// ceilings dim (the furnace: a voxel's second bounce gathers 20% too little). A point on a
 // surface has its voxels within half a voxel; a voxel's centre may lie
 // half a voxel below its surface, with a second layer above it (a wall on a voxel boundary).
 float self_clamp_level(float height, float surface) {
@@ -157,8 +157,9 @@ bool next_sample(March m, vec3 start, vec3 dir, float tan_half, float rise, Cone
     level = clamp(l, 0.0, p.max_level);
     step = p.step * exp2(level) / fine;
     // The cone has left the volume once its sample's trilinear filter no longer reaches inside:
-    // half a texel of its level beyond the edge. Stopping at the edge itself cut short the filter
-    // of every texel on the boundary, so walls the grid is fitted to lost a fifth of their light.
+    // half a texel of its level beyond the edge. Stopping at the edge itself would cut short the
+    // filter of every texel on the boundary, and walls the grid is fitted to would lose a fifth
+    // of their light.
     vec3 reach = 0.5 * exp2(level) / fine / p.dims;
     bool inside = all(greaterThan(pos, -reach)) && all(lessThan(pos, 1.0 + reach));
     if (warp_projective(p.warp)) {
@@ -221,7 +222,7 @@ void accumulate(inout March m, vec4 s, float level, float step, uint flags) {
 }
 
 // A cone stops once 95% opaque; the light behind its last 5% is of the kind it saw so far, not
-// black (left black, every gather of a closed room came out 5% dark).
+// black (left black, every gather of a closed room comes out 5% dark).
 vec4 finish(March m) {
     return m.alpha >= 0.95 ? vec4(m.color / m.alpha, 1.0) : vec4(m.color, m.alpha);
 }

@@ -40,7 +40,7 @@
 #define VERTEX_FLOATS 12
 // Injection reads this many shadow-map texels per voxel width at the farthest lit point (every
 // k-th texel of a finer map), so its cost follows the grid, not the map (render::inject).
-// Measured (docs/benchmarks.md, "Injection cost"): voxels of walls the light grazes are hit by
+// Measured (docs/design/injection.md): voxels of walls the light grazes are hit by
 // few texels, so fewer than 8 changed Sponza's image (FLIP 0.025 at 4 against every texel);
 // 8 changed neither test scene and only strides maps finer than 16 texels a voxel.
 #define INJECT_TEXELS_PER_VOXEL 8.0
@@ -62,7 +62,7 @@
 // Sparse storage (voxel::bricks, common/bricks.glsl): bricks of BRICK_SIZE³ voxels. The
 // per-voxel textures are read texel by texel (never filtered), so a brick needs no apron and its
 // size only trades the page table (4 bytes a brick) against the empty voxels of occupied
-// bricks. Measured (docs/benchmarks.md, "Sparse storage"): 2³ bricks hold Sponza's 256-voxel
+// bricks. Measured (docs/design/storage.md): 2³ bricks hold Sponza's 256-voxel
 // grid in 19% of its texels and the Cornell box's 256³ in 5%; 4³ bricks need 38% and 10%, 8³
 // 61% and 19%; with the table, 2³ costs the fewest bytes in both. At least 2: a level-1
 // parent's eight children then share one brick (gi/filter_aniso.comp reads its page once).
@@ -75,11 +75,11 @@
 
 // `--res auto` without a target (bench::auto): voxels a metre along the scene's longest axis.
 // 12.5 cm voxels: the Cornell box (5.5 m) gets 64, where its FLIP against the path tracer is
-// already what 256³ gives (docs/benchmarks.md, "Resolution"); Sponza (34.8 m) the largest, 256.
+// already what 256³ gives (docs/report/README.md); Sponza (34.8 m) the largest, 256.
 #define AUTO_VOXELS_PER_METRE 8.0
 
 // Global illumination (Freed 2018 §4.3-4.5).
-// Diffuse cones: the largest cone set (render::cones), each cone a direction in the surface's
+// Diffuse cones: the largest cone set (scene::cones), each cone a direction in the surface's
 // tangent frame, a weight and an aperture.
 #define MAX_CONES 32
 // Cone-tracing options (FrameUniforms.cone_model.z, a bit set).

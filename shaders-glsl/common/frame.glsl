@@ -1,11 +1,11 @@
-// Per-frame uniforms and scene bindings (set 0), mirrored by `render::frame::FrameUniforms`
-// and `render::scene_gpu::MaterialGpu` in Rust. std140: only mat4 and vec4 members.
+// Per-frame uniforms and scene bindings (set 0), mirrored by `scene::gpu::FrameUniforms`
+// and `scene::gpu::MaterialGpu` in Rust. std140: only mat4 and vec4 members.
 #ifndef VCT_FRAME_GLSL
 #define VCT_FRAME_GLSL
 #include "config.h"
 #include "warp.glsl"
 
-// One light (render::frame::LightGpu).
+// One light (scene::gpu::LightGpu).
 struct LightData {
     vec4 position;   // xyz: spot or point position; w: LIGHT_*
     vec4 direction;  // xyz: the way light travels (unit)
@@ -170,7 +170,8 @@ layout(set = 0, binding = 1, std430) readonly buffer Materials { Material materi
 // plus the specular lobe's reflectance at normal incidence (F0), as direct shading reflects
 // both. A voxel spreads what it reflects over every direction: a glossy surface's light is
 // kept, in the wrong directions, instead of being lost (the classic Cornell box's boxes have
-// Kd 0 and Ks 0.725: their voxels reflected nothing; docs/benchmarks.md, "Emissive surfaces").
+// Kd 0 and Ks 0.725: with the diffuse albedo alone their voxels would reflect nothing;
+// docs/design/injection.md).
 vec3 voxel_albedo_of(Material m, vec3 albedo) {
     float metallic = m.albedo.a;
     return min(albedo * (1.0 - metallic) + mix(m.specular.rgb, albedo, metallic), vec3(1.0));
@@ -181,7 +182,7 @@ vec3 voxel_emission_of(Material m) {
     return m.tex.z != 0u ? vec3(0.0) : m.emissive.rgb;
 }
 
-// The diffuse cone set (render::cones::ConeGpu): a cosine-weighted quadrature of the hemisphere.
+// The diffuse cone set (scene::cones::ConeGpu): a cosine-weighted quadrature of the hemisphere.
 struct Cone {
     vec4 dir_weight;  // xyz: direction in the tangent frame (z along the normal); w: weight
     vec4 shape;       // x: tan(half aperture)

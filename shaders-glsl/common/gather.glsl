@@ -1,5 +1,5 @@
 // Diffuse light gathered by the cone set (Freed 2018 §4.5.2; the set itself is built in
-// render/cones.rs): each cone of `cones` is a direction in the surface's tangent frame with its
+// scene/cones.rs): each cone of `cones` is a direction in the surface's tangent frame with its
 // cosine weight, and the weighted sum of the cones' radiance is the cosine-weighted mean of the
 // incoming radiance, so albedo times it is the outgoing diffuse radiance (albedo/pi * E). Shared
 // by the surface shading and the voxel-space bounce pass. The includer binds `radiance_volume`

@@ -3,7 +3,7 @@
 // neighbouring voxels lie in other bricks' slots, so the eight taps are fetched through the
 // page table and weighted here, with zeros outside the grid as the sampler's border gives.
 // Cones read level 0 only below level 1 (common/cone.glsl), the pool's price: on lavapipe the
-// shading took 4-8% longer than with the dense sampler (docs/benchmarks.md). The includer
+// shading takes 4-8% longer than with the dense sampler (docs/design/storage.md). The includer
 // binds the page table (BRICKS_SET, BRICKS_BINDING) and includes frame.glsl.
 #ifndef VCT_LEVEL0_GLSL
 #define VCT_LEVEL0_GLSL

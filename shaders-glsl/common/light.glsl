@@ -9,8 +9,8 @@
 
 // An includer that knows no light is an area light defines this false (a specialization
 // constant, scene::gpu::SceneGpu::area_lights): inlined into a loop over the lights, the
-// polygon's code, though never run for a spot, kept spot-lit injection at 1.7-2x the time it
-// took without, and the deferred shading of every pixel at 1.25x (docs/benchmarks.md).
+// polygon's code, though never run for a spot, keeps spot-lit injection at 1.7-2x the time it
+// takes without, and the deferred shading of every pixel at 1.25x (docs/design/injection.md).
 #ifndef VCT_AREA_LIGHTS
 #define VCT_AREA_LIGHTS true
 #endif
@@ -37,8 +37,8 @@ vec3 arvo_edge(vec3 a, vec3 b) {
 // above counts whole, one that crosses counts its part above, and the clipped polygon's closing
 // edge runs along the horizon from where the outline leaves to where it comes back. Light leaves
 // the side `direction` points to only. The clipped corners are not stored: a local array indexed
-// in a loop made lavapipe's injection of every light, spots included, 7x slower (1085 against
-// 158 ms for the Cornell spot at 32³, docs/benchmarks.md).
+// in a loop makes lavapipe's injection of every light, spots included, 7x slower (1085 against
+// 158 ms for the Cornell spot at 32³, docs/design/injection.md).
 vec3 area_incident(LightData li, vec3 p, vec3 n, out vec3 l) {
     vec3 c = li.position.xyz - p;
     l = c / max(length(c), 1e-8);

@@ -12,17 +12,18 @@
 // (voxelize/raster.frag: a thin wall keeps its light on its side), and injection lights only the
 // one on the light's side; the other holds the surface from behind, dark. Face-on it is hidden
 // behind the lit voxel, or hides it from the dark side, which is what it is there for. But the
-// chains that see the face edge-on average the two side by side: the far voxel doubled the
-// surface's thickness and halved its light (radiance r/2 at opacity 1 in a parent, against r/2
-// at 1/2 for a surface inside one layer), so a cone grazing a lit wall gathered half its light.
+// chains that see the face edge-on would average the two side by side: the far voxel would
+// double the surface's thickness and halve its light (radiance r/2 at opacity 1 in a parent,
+// against r/2 at 1/2 for a surface inside one layer), so a cone grazing a lit wall would gather
+// half its light.
 // So, building level 1, a dark unlit child behind a lit neighbour's face counts as empty in the
 // chains along that face: the surface is one voxel thick edge-on wherever it lies. Measured
-// (docs/benchmarks.md, "Resolution"): the Cornell spot's floor at 256³, whose walls the fitted
+// (docs/design/filtering.md): the Cornell spot's floor at 256³, whose walls the fitted
 // grid puts on voxel faces, 0.73 -> 0.85 of the reference's indirect light, as on every lattice
 // moved by under a voxel; Sponza's three views within 0.0003 FLIP.
 // Level 1 builds all six chains in one invocation a parent: each child is read, and searched
-// for a lit face beside it, once rather than once a chain (the search had made the pass five
-// times as long on Sponza; docs/benchmarks.md, "Resolution").
+// for a lit face beside it, once rather than once a chain (searched once a chain, the pass takes
+// five times as long on Sponza; docs/design/filtering.md).
 // The chains live in one atlas (render::radiance::AtlasLayout): each reads and writes its own
 // block, stacked along one axis.
 #include "config.h"

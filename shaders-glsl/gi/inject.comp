@@ -5,11 +5,12 @@
 // Step 2 (gi/resolve.comp) then runs once per occupied voxel and writes the light of every light
 // whose bit is set. The value depends on the voxel and its bits alone (it is computed at the
 // voxel centre), so which voxels a light lights does not depend on the other lights, and the
-// result not on the order texels land. Measured (lavapipe, 64³, the images unchanged): the
-// Cornell spot's injection (its 2048² map's 4.2M texels) took 202-206 ms lighting at every
-// texel, as Algorithm 2 does, and 148-150 ms marking; with a point light added, which needed a
-// second pass over every texel to gather the marked lights' light, 699-702 against 261-263 ms.
-// Hoisting the per-texel matrix inverse to the host saved 4 ms more, not worth its uniforms.
+// result not on the order texels land. Measured (lavapipe, 64³, the images the same): the
+// Cornell spot's injection (its 2048² map's 4.2M texels) takes 202-206 ms lighting at every
+// texel, as Algorithm 2 does, and 148-150 ms marking; with a point light added, where lighting
+// at every texel needs a second pass over every texel to gather the marked lights' light,
+// 699-702 against 261-263 ms. Hoisting the per-texel matrix inverse to the host would save
+// 4 ms more, not worth its uniforms.
 #define VCT_OWN_PUSH
 #include "frame.glsl"
 

@@ -4,8 +4,8 @@
 // turned towards the light, or the side it gathered bounced light on), and of its whole
 // luminance. Emitted light leaves to every side and adds to the luminance only. The mip filter
 // then averages it like the radiance. The moment has no level 0: the cones read it from level 1
-// (changing images by FLIP 0.0001-0.003 against a level 0 blended in, docs/benchmarks.md), and
-// level 0 took as much memory as the radiance's.
+// (images within FLIP 0.0001-0.003 of those with a level 0 blended in, docs/design/filtering.md),
+// and a level 0 would take as much memory as the radiance's.
 #include "config.h"
 #include "rgb9e5.glsl"
 #include "lit_side.glsl"

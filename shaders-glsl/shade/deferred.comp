@@ -9,8 +9,8 @@
 // stands in; a traced pixel shows its own trace. With SPECULAR_REDUCED the specular cone
 // is traced with them (into `specular_low`, before the Fresnel factor, which each pixel applies
 // with its own material) and upsampled and accumulated alike; otherwise every pixel traces its
-// own. On Sponza the specular cone (narrow, so many steps) was 70% of the shading pass (640x360,
-// scale 4: 920 ms with it, 275 without; docs/benchmarks.md).
+// own. On Sponza the specular cone (narrow, so many steps) is 70% of the shading pass (640x360,
+// scale 4: 920 ms with it, 275 without; docs/design/reduced-scale.md).
 //
 // ACCUMULATE (screen-space accumulation, `--gi-accumulate`; PASS ACCUMULATE, between the two,
 // writes each pixel's gather to `history_out`, which the shading pass reads): the traced pixel
@@ -25,10 +25,10 @@
 // indirect light is within 1.3% / 3.3% of full-resolution tracing at scale 2 / 4 (upsampling
 // alone: 5.3% / 14.4%), under a spot turning 0.5° a frame within 0.6% / 2.3% (6.1% / 15.0%),
 // and it changes from frame to frame no more than full-resolution tracing does. Measured and
-// dropped: a neighbourhood clamp (Karis 2014), whose range moves with the traced pixels, so a
-// still view kept changing by 0.6-1.0% a frame; and moving the kept trace by its traced
+// not used: a neighbourhood clamp (Karis 2014), whose range moves with the traced pixels, so a
+// still view keeps changing by 0.6-1.0% a frame; and moving the kept trace by its traced
 // neighbours' change since their own traces, whose estimate differs with each frame's traced
-// pixels: it flickered 2.5-14% a frame.
+// pixels: it flickers 2.5-14% a frame.
 // Constants 7 and 8: whether any light is an area light (common/light.glsl), and whether any
 // material reflects specularly (common/shading.glsl; without, SPECULAR_REDUCED is off too).
 layout(constant_id = 7) const bool AREA_LIGHTS = true;
@@ -147,7 +147,7 @@ vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec)
 // the mean of those on the same surface (normal within ~25 degrees, position within half a
 // voxel of this pixel's tangent plane, as `upsampled_gather` judges), this pixel's own always
 // among them. A turned set leaves each pixel's light off by where its cones fell; nine turns
-// together sample each cone's cell in nine directions (docs/benchmarks.md, "Cone by cone").
+// together sample each cone's cell in nine directions (docs/design/cones.md).
 vec4 resolved_gather(ivec2 px, vec3 world, vec3 n) {
     ivec2 size = ivec2(frame.viewport.xy);
     float plane = 0.5 * frame.voxel_origin.w;
@@ -169,8 +169,8 @@ vec4 resolved_gather(ivec2 px, vec3 world, vec3 n) {
 const uint SURFACE_TRACE = 0x80000000u;
 const uint SURFACE_ESTIMATE = 0x40000000u;
 // The weight of this frame's upsampled light in an estimate. Without the average, a pixel not yet
-// traced showed each frame's upsampling from other traced pixels: at scale 8 the first 64
-// frames after a cut flickered and dotted edges (docs/benchmarks.md).
+// traced would show each frame's upsampling from other traced pixels: at scale 8 the first 64
+// frames after a cut would flicker and dot edges (docs/design/reduced-scale.md).
 const float ESTIMATE_WEIGHT = 0.25;
 
 // A unit normal in 30 bits (octahedral, 15 bits an axis); bits 30 and 31 are left for the flags.
@@ -195,9 +195,9 @@ vec3 unpack_surface_normal(uint w) {
 // does, those that keep an estimate (`estimate` true); false where the point was off screen or
 // no pixel there keeps either (disocclusion). The point moves by the
 // difference of its two projections, whose rounding cancels when the camera stood still.
-// Measured and dropped: nearest-pixel reprojection (after a 35-degree turn the kept history was
+// Measured and not used: nearest-pixel reprojection (after a 35-degree turn the kept history is
 // worse than none, 1.5% against 1.2%), and projecting the rebuilt position alone (a few
-// hundredths of a pixel off, so resampling it every frame blurred a still view by 0.15%).
+// hundredths of a pixel off, so resampling it every frame blurs a still view by 0.15%).
 bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h, out vec4 hs, out bool estimate) {
     vec4 clip = frame.previous_view_proj * vec4(world, 1.0);
     vec4 now = frame.view_proj * vec4(world, 1.0);
@@ -294,8 +294,8 @@ void main() {
                     // The specular cone looks along the reflected view: a trace from another
                     // camera position is of another direction. While the camera moves, this
                     // frame's upsampled traces stand in (on Sponza orbiting 0.5 degrees a frame,
-                    // the kept traces were 12.7% off full resolution's indirect light;
-                    // docs/benchmarks.md).
+                    // the kept traces are 12.7% off full resolution's indirect light;
+                    // docs/design/reduced-scale.md).
                     if (frame.gi_jitter.w < 0.5) spec = hs;
                     holds = SURFACE_TRACE;
                 }
@@ -327,8 +327,8 @@ void main() {
     }
     // Whether the cones were traced elsewhere is known when the shader is specialized
     // (shade_surface_given reads the gather only with GI on): as a runtime value, the cone code
-    // it stands for stayed in this pass, and lavapipe, which runs a branch for every lane
-    // whether or not one takes it, paid for a cone's first steps at every pixel.
+    // it stands for would stay in this pass, and lavapipe, which runs a branch for every lane
+    // whether or not one takes it, would pay for a cone's first steps at every pixel.
     const bool traced = GI_SCALE > 1u || RESOLVE;
     imageStore(hdr, px, vec4(shade_surface_given(m, a.rgb, n, world, traced, gathered, SPECULAR_REDUCED && traced, spec.rgb, px), 1.0));
 }

@@ -2,7 +2,7 @@
 // Tessellation voxelizer, control stage (Freed 2018 §4.1.2): each outer level is the number
 // of voxels its edge spans along its dominant direction (|E|_inf / voxel), the inner level the
 // triangle's largest altitude (Heron) over the voxel size; both times a level scale (the
-// thesis' levels undersample diagonals, see README), clamped to the device maximum. With
+// thesis' levels undersample diagonals, docs/design/voxelizers.md), clamped to the device maximum. With
 // VOXEL_FLAG_MIN_LEVEL levels stay >= 1; without, a level below one truncates to 0 and the
 // hardware discards the patch (the thesis' failure for triangles inside one voxel).
 #include "voxel.glsl"

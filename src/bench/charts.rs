@@ -8,9 +8,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::accuracy::AccuracyRow;
-use super::stability::{Regime, Series};
 use super::{Results, Row};
 use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
 
 const FONT_PATHS: [&str; 2] =
     ["/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/dejavu/DejaVuSans.ttf"];
@@ -47,6 +47,25 @@ fn colour_of(voxelizer: &str) -> RGBColor {
         "points" => PALETTE[4],
         _ => PALETTE[3],
     }
+}
+
+/// One curve: a label and its (x, y) points.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Regime {
+    pub name: String,
+    pub title: String,
+    pub x: String,
+    pub y: String,
+    pub log_x: bool,
+    /// A logarithmic y axis (every value must be positive).
+    pub log_y: bool,
+    pub series: Vec<Series>,
 }
 
 type DrawResult<DB> = std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
@@ -298,7 +317,7 @@ pub fn draw_all(dir: &Path, all: &Results, before: Option<&Results>) -> Result<V
     ensure_font()?;
     // The voxelizer charts over the default storage; the storage charts over every mode.
     let stored = all.stored();
-    let r = &Results { rows: all.rows.iter().filter(|x| x.storage == stored).cloned().collect(), ..all.clone() };
+    let r = &all.on_default_storage();
     let charts: [(&str, Chart); 4] = [
         ("voxelize_time", both_backends!(voxelize_time, 900, 560)),
         ("passes_stacked", both_backends!(passes_stacked, 1000, 640)),
@@ -321,14 +340,12 @@ pub fn draw_all(dir: &Path, all: &Results, before: Option<&Results>) -> Result<V
     if !ratio.series.is_empty() {
         files.extend(draw_named(dir, &ratio.name, &ratio)?);
     }
-    files.extend(super::points::draw(dir, r)?);
-    files.extend(super::gi_scale::draw(dir, r)?);
     Ok(files)
 }
 
 /// Tessellated over rasterized (MSAA) voxelization time against the resolution, one curve per
-/// scene, and the same from `before`, an earlier run, where given (issue "hostile geometry":
-/// the ratio before and after patch balancing).
+/// scene, and the same from `before`, an earlier run, where given
+/// (two runs of different code, side by side).
 pub fn tess_ratio(r: &Results, before: Option<&Results>) -> Regime {
     let curves = |r: &Results, suffix: &str| -> Vec<Series> {
         let stored = r.stored();

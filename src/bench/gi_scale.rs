@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::stability::{Regime, Series};
+use super::charts::{Regime, Series};
 use super::{charts, Results, Row};
 use crate::error::Result;
 
@@ -19,7 +19,7 @@ pub const SCALES: [u32; 3] = [2, 4, 8];
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ScaleRow {
     pub scale: u32,
-    /// Accumulated over frames (absent in runs before `--gi-accumulate`).
+    /// Accumulated over frames (false where a results file does not say).
     #[serde(default)]
     pub accumulate: bool,
     pub row: Row,

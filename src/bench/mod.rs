@@ -11,6 +11,7 @@ pub mod gi_scale;
 pub mod hostile;
 pub mod occupancy;
 pub mod points;
+pub mod report;
 pub mod stability;
 
 use std::collections::hash_map::DefaultHasher;
@@ -53,6 +54,27 @@ pub struct BenchOptions {
     pub gi_scales: Vec<u32>,
 }
 
+impl BenchOptions {
+    /// The standard sweep over `scenes` (the quick one for CI: 32³ and 64³, few frames, a
+    /// 16-spp reference; the full one: 64³, 128³ and 256³, a 256-spp reference), with every
+    /// storage mode the device offers beside the default.
+    pub fn standard(scenes: Vec<(String, Scene)>, quick: bool, out_dir: PathBuf, cache_dir: PathBuf) -> BenchOptions {
+        BenchOptions {
+            scenes,
+            resolutions: if quick { vec![32, 64] } else { vec![64, 128, 256] },
+            warmup: if quick { 1 } else { 2 },
+            frames: if quick { 3 } else { 5 },
+            reference_spp: if quick { 16 } else { 256 },
+            subdivisions: if quick { 2 } else { 4 },
+            point_densities: if quick { points::QUICK_DENSITIES.to_vec() } else { points::DENSITIES.to_vec() },
+            gi_scales: gi_scale::SCALES.to_vec(),
+            out_dir,
+            cache_dir,
+            compare_storage: vec![Storage::Dense, Storage::Sparse, Storage::Resident],
+        }
+    }
+}
+
 /// One configuration's figures.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Row {
@@ -60,7 +82,7 @@ pub struct Row {
     pub triangles: usize,
     pub voxelizer: String,
     pub resolution: u32,
-    /// The fitted grid's voxels along x, y, z (absent in runs before fitted grids).
+    /// The fitted grid's voxels along x, y, z (zero where a results file lacks them).
     #[serde(default)]
     pub dims: [u32; 3],
     /// GPU memory of the voxel textures and radiance volumes, and over the bounding cube.
@@ -68,7 +90,7 @@ pub struct Row {
     pub memory_mib: f64,
     #[serde(default)]
     pub cube_memory_mib: f64,
-    /// Where the per-voxel textures lived (runs before sparse storage: dense).
+    /// Where the per-voxel textures lived (dense where a results file does not say).
     #[serde(default = "dense_label")]
     pub storage: String,
     pub frames: u32,
@@ -105,19 +127,26 @@ pub struct Results {
     pub references: Vec<ReferenceInfo>,
     pub rows: Vec<Row>,
     pub triangle_sweep: Vec<TriangleRow>,
-    /// The point voxelizer at several densities (absent in runs before it).
+    /// The point voxelizer at several densities (empty where a results file lacks it).
     #[serde(default)]
     pub density_sweep: Vec<points::DensityRow>,
-    /// The diffuse cones at a reduced resolution (absent in runs before `--gi-scale`).
+    /// The diffuse cones at a reduced resolution (empty where a results file lacks it).
     #[serde(default)]
     pub gi_scale_sweep: Vec<gi_scale::ScaleRow>,
-    /// The default storage on the device (`auto` resolved; absent in runs before residency,
-    /// whose first rows ran the default: see [`Results::stored`]).
+    /// The default storage on the device (`auto` resolved; where a results file
+    /// does not say, its first rows ran the default: see [`Results::stored`]).
     #[serde(default)]
     pub default_storage: Option<String>,
 }
 
 impl Results {
+    /// The rows of the default storage only: every voxelizer ran with it (the other modes ran
+    /// the default voxelizer only).
+    pub fn on_default_storage(&self) -> Results {
+        let stored = self.stored();
+        Results { rows: self.rows.iter().filter(|x| x.storage == stored).cloned().collect(), ..self.clone() }
+    }
+
     /// The storage every voxelizer ran with (the other modes ran the default voxelizer only).
     pub fn stored(&self) -> &str {
         self.default_storage.as_deref().or(self.rows.first().map(|r| r.storage.as_str())).unwrap_or("sparse")
@@ -445,7 +474,17 @@ pub fn write(dir: &Path, results: &Results, before: Option<&Results>) -> Result<
         serde_json::to_string_pretty(results).map_err(|e| Error::input(dir.join("results.json"), e.to_string()))?;
     files.push(write("results.json", &json)?);
     files.push(write("summary.md", &summary(results))?);
-    files.extend(charts::draw_all(dir, results, before)?);
+    files.extend(draw(dir, results, before)?);
+    Ok(files)
+}
+
+/// Draws every chart of a sweep into `dir` (as [`write`] does): the voxelizers', the storage
+/// modes', the point densities' and the GI scales'.
+pub fn draw(dir: &Path, results: &Results, before: Option<&Results>) -> Result<Vec<PathBuf>> {
+    let mut files = charts::draw_all(dir, results, before)?;
+    let r = &results.on_default_storage();
+    files.extend(points::draw(dir, r)?);
+    files.extend(gi_scale::draw(dir, r)?);
     Ok(files)
 }
 
@@ -460,7 +499,7 @@ pub fn read_results(path: &Path) -> Result<Results> {
     Ok(r)
 }
 
-/// The results as Markdown tables (for docs/benchmarks.md).
+/// The results as Markdown tables (`summary.md` of a run).
 pub fn summary(r: &Results) -> String {
     let mut s = format!(
         "Device: {} ({}). {} warm-up and {} timed frames per configuration, at least 0.5 s and 0.25 s \

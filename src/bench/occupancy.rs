@@ -1,4 +1,4 @@
-//! Cost against occupancy (issue "model no more than the scene needs"): on one fixed grid, scenes
+//! Cost against occupancy: on one fixed grid, scenes
 //! that occupy more and more of it — a closed room with 0, 2, 4, ... full-width shelves — timed
 //! with the passes over the volume run over the occupied voxels and texels (the default) and
 //! over every texel (`Work::Dense`). The first should grow with the occupied voxels; the second
@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use glam::{UVec3, Vec3};
 
-use super::stability::{Regime, Series};
+use super::charts::{Regime, Series};
 use crate::error::Result;
 use crate::gpu::{timer::median, Context, Timing};
 use crate::render::{RenderOptions, Renderer, Work};

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::stability::{Regime, Series};
+use super::charts::{Regime, Series};
 use super::{charts, Results, Row};
 use crate::error::Result;
 

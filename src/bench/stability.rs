@@ -10,14 +10,16 @@
 //!    slides (following a camera) or the light moves, with and without grid snapping and
 //!    temporal filtering.
 
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::Vec3;
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
-use serde::Serialize;
 
-use crate::error::Result;
+use super::charts::{self, Regime, Series};
+use super::hostile::HostileRow;
+use crate::error::{Error, Result};
 use crate::gpu::Context;
 use crate::reference::coverage::{Accuracy, RefGrid};
 use crate::render::{ClipOptions, Follow, RenderOptions, Renderer, View};
@@ -25,25 +27,6 @@ use crate::scene::file::{Filter, GiFile};
 use crate::scene::{Camera, Light, Scene};
 use crate::voxel::headless::voxelize_in;
 use crate::voxel::{Coverage, VoxelGrid, VoxelizeMethod, DEFAULT_LEVEL_SCALE, DEFAULT_NEIGHBOURS};
-
-/// One curve: a label and its (x, y) points.
-#[derive(Clone, Debug, Serialize)]
-pub struct Series {
-    pub label: String,
-    pub points: Vec<(f64, f64)>,
-}
-
-#[derive(Clone, Debug, Serialize)]
-pub struct Regime {
-    pub name: String,
-    pub title: String,
-    pub x: String,
-    pub y: String,
-    pub log_x: bool,
-    /// A logarithmic y axis (every value must be positive).
-    pub log_y: bool,
-    pub series: Vec<Series>,
-}
 
 /// Recall, precision and IoU of `method` on `scene` in `grid` against the exact coverage.
 pub fn voxel_accuracy(ctx: &Arc<Context>, scene: &Scene, method: VoxelizeMethod, grid: VoxelGrid) -> Result<Accuracy> {
@@ -483,4 +466,24 @@ pub fn run(ctx: &Arc<Context>, quick: bool, progress: &dyn Fn(&str)) -> Result<V
     progress("5. self-illumination");
     let r5 = self_illumination(ctx, &pick(&[0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0], &[0.0, 1.5]))?;
     Ok(vec![r1, r2, r2b, r3, r4, r5])
+}
+
+/// Writes the regimes' charts (`stability_<name>.png` and `.svg`), `stability.json` and the
+/// hostile-geometry rows' `hostile.json` into `dir`; returns the files written.
+pub fn write(dir: &Path, regimes: &[Regime], hostile: &[HostileRow]) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
+    let mut files = Vec::new();
+    for g in regimes {
+        files.extend(charts::draw_regime(dir, g)?);
+    }
+    for (name, json) in [
+        ("stability.json", serde_json::to_string_pretty(regimes)),
+        ("hostile.json", serde_json::to_string_pretty(hostile)),
+    ] {
+        let path = dir.join(name);
+        let text = json.map_err(|e| Error::input(&path, e.to_string()))?;
+        std::fs::write(&path, text).map_err(|source| Error::Io { path: path.clone(), source })?;
+        files.push(path);
+    }
+    Ok(files)
 }

@@ -1,9 +1,8 @@
-//! Frames in flight: per slot a command buffer and the fence its submission signals, used in
-//! turn, so the host records frame N + 1 while the GPU still runs frame N (issue "frame time",
-//! its fifth deliverable). A frame waits only for the fence of the frame that last used its
-//! slot, `depth` frames before. The viewer's swapchain submits through one (adding its acquire
-//! and present semaphores); `vct render --in-flight K` runs headless frames through one, to
-//! measure what the overlap buys on a device with no display.
+//! Frames in flight: per slot a command buffer and the fence its submission signals, used in turn,
+//! so the host records frame N + 1 while the GPU still runs frame N. A frame waits only for the
+//! fence of the frame that last used its slot, `depth` frames before. The viewer's swapchain
+//! submits through one (adding its acquire and present semaphores); `vct render --in-flight K` runs
+//! headless frames through one, to measure what the overlap buys on a device with no display.
 
 use std::sync::Arc;
 

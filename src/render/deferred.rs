@@ -1,14 +1,14 @@
-//! Deferred variant of the final shading, kept to measure where cone tracing should run
-//! (`--tracing deferred`): a G-buffer pass (depth; albedo with textures applied + material
-//! index; shading normal + camera distance), then one compute thread per pixel running the same
-//! `shade_surface` (common/shading.glsl) as the forward path. With a GI scale s > 1 the diffuse
-//! cones are traced first at one pixel in s² and upsampled edge-aware in the shading pass (the
-//! reduced-resolution indirect light engines that ship cone tracing use; shade/deferred.comp),
-//! and by default the specular cone with them (`RenderOptions::reduced_specular`).
-//! With accumulation on (`--gi-accumulate`) the traced pixel of each block moves frame by frame
-//! ([`jitter`]) and a pass of its own, between tracing and shading, lets every pixel keep its
-//! last trace in a history reprojected with the camera and rejected on disocclusion: two
-//! full-resolution history pairs, ping-ponged.
+//! Deferred final shading, the default (`--tracing deferred`; the thesis' forward path is
+//! `shade.rs`): a G-buffer pass (depth; albedo with textures applied + material index; shading
+//! normal + camera distance), then one compute thread per pixel running the same `shade_surface`
+//! (common/shading.glsl) as the forward path. With a GI scale s > 1 the diffuse cones are traced
+//! first at one pixel in s² and upsampled edge-aware in the shading pass (the reduced-resolution
+//! indirect light engines that ship cone tracing use; shade/deferred.comp), and by default the
+//! specular cone with them (`RenderOptions::reduced_specular`). With accumulation on
+//! (`--gi-accumulate`) the traced pixel of each block moves frame by frame ([`jitter`]) and a pass
+//! of its own, between tracing and shading, lets every pixel keep its last trace in a history
+//! reprojected with the camera and rejected on disocclusion: two full-resolution history pairs,
+//! ping-ponged.
 
 use std::cell::Cell;
 use std::sync::Arc;
@@ -251,8 +251,8 @@ impl DeferredShadePass {
         };
         let shade_pipeline = pipeline("deferred shade", 0)?;
         let trace_pipeline = (gi_scale > 1 || resolve).then(|| pipeline("diffuse cones (reduced)", 1)).transpose()?;
-        // A pass of its own: in the shading pass, the accumulation's code (even where it did not
-        // run) made lavapipe's shading 2.2x slower (1280x720, scale 4: 777 -> 1766 ms).
+        // A pass of its own: in the shading pass, the accumulation's code (even where it does not
+        // run) would make lavapipe's shading 2.2x slower (1280x720, scale 4: 777 -> 1766 ms).
         let accumulate_pipeline = accumulate.then(|| pipeline("diffuse accumulation", 2)).transpose()?;
         Ok(DeferredShadePass {
             ctx: ctx.clone(),

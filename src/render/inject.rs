@@ -59,8 +59,8 @@ pub fn injection_stride(texel: f32, voxel: f32, texels_per_voxel: f32) -> u32 {
 
 /// Whether injection runs from the voxels: as `choice` says, but never on a warped grid. Its
 /// texels, up to four grid voxels deep, do not say where in them their surface lies, and a
-/// lookup at one point of the lit side saw the light where the floor before the short box lay in
-/// its shadow (its front face then gathered 1.6-1.9x the reference's indirect light).
+/// lookup at one point of the lit side sees the light where the floor before the short box lies
+/// in its shadow (its front face then gathers 1.6-1.9x the reference's indirect light).
 pub fn from_voxels(choice: Injection, warped: bool) -> bool {
     choice == Injection::Voxels && !warped
 }

@@ -1,7 +1,7 @@
-//! The volume's layout, one of the design card's siblings: a grid fitted to the scene, a cube
-//! following the camera (Freed 2018 §4.1), a warped grid (§4.6.1, §4.6.2) or clipmap levels around the
-//! camera (Wicked Engine's VXGI; §2.3.2). Which grid a renderer's options ask for, and what each
-//! layout cannot be combined with.
+//! The volume's layout, one of four siblings: a grid fitted to the scene, a cube following the
+//! camera (Freed 2018 §4.1), a warped grid (§4.6.1, §4.6.2) or clipmap levels around the camera
+//! (Wicked Engine's VXGI; §2.3.2). Which grid a renderer's options ask for, and what each layout
+//! cannot be combined with.
 
 use super::{ClipOptions, RenderOptions};
 use crate::error::Result;

@@ -1,7 +1,7 @@
 //! The memory report: bytes of every voxel texture and radiance volume a renderer allocates
 //! for its grid, beside what the same textures take over the bounding cube of the grid's
-//! longest axis (the layout before fitted grids). "Model no more than a scene needs": the
-//! report is how that is measured (docs/benchmarks.md, "Memory").
+//! longest axis (a dense cube, the layout a fitted grid is measured against). The report is how
+//! the memory a layout and a storage save is measured (docs/design/storage.md).
 
 use std::fmt;
 

@@ -186,8 +186,8 @@ pub struct RenderOptions {
     pub gi_accumulate: bool,
     /// With `gi_scale` > 1, the specular cone is traced with the diffuse cones at one pixel in
     /// `gi_scale`², upsampled and accumulated alike (each pixel applies its own Fresnel
-    /// factor); off, every pixel traces its own. On: on Sponza the per-pixel specular cone was
-    /// 70% of the shading time (docs/benchmarks.md, "Diffuse cones at a reduced resolution").
+    /// factor); off, every pixel traces its own. On: on Sponza the per-pixel specular cone takes
+    /// 70% of the shading time (docs/design/reduced-scale.md).
     pub reduced_specular: bool,
     /// Keep last frame's voxels and radiance when nothing they depend on changed (the scene is
     /// static; the lights, the grid and the GI settings are as they were; no temporal filter
@@ -214,7 +214,7 @@ impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
             // Exact and the fastest: hardware conservative rasterization where the device has
-            // it, else the geometry shader's (docs/benchmarks.md, "Hostile geometry", "On a GPU").
+            // it, else the geometry shader's (docs/design/voxelizers.md; docs/report/README.md).
             method: VoxelizeMethod::raster(crate::voxel::Coverage::Auto),
             resolution: None,
             dims: None,

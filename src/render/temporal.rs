@@ -5,7 +5,7 @@
 //!
 //! Over the occupied voxels (`listed`), the blend runs on the occupied-voxel list after clearing
 //! level 0: only occupied voxels keep light, with or without a history (a voxel its geometry
-//! left no longer trails light behind a moving volume).
+//! has left keeps none, so no light trails behind a moving volume).
 //!
 //! Level 0 and the history are stored as the per-voxel targets (voxel::bricks). With sparse
 //! storage the grid is fixed, so the previous frame's voxel is this one's, in the same slot. With

@@ -4,10 +4,10 @@
 //! polygon's exact irradiance (Lambert's formula for a polygon, in Arvo 1995's vector form,
 //! clipped to the receiver's horizon: common/light.glsl), shadowed by a cube map from the quad's
 //! centre and injected into the voxels like any light. The quad keeps its emission for the eye
-//! and for the path tracer (which samples the triangles themselves), but its voxels no longer
-//! emit it: a partly covered voxel held the quad's full radiance at full opacity, so the first
-//! gather saw a 0.47 m quad as a blotchy texel-sized lamp (docs/benchmarks.md, "Emissive
-//! surfaces"). Other emitters (single triangles, curved or textured ones) stay voxel emitters.
+//! and for the path tracer (which samples the triangles themselves), but its voxels do not
+//! emit it: a partly covered voxel would hold the quad's full radiance at full opacity, so the
+//! first gather would see a 0.47 m quad as a blotchy texel-sized lamp (docs/design/injection.md).
+//! Other emitters (single triangles, curved or textured ones) stay voxel emitters.
 
 use glam::Vec3;
 
@@ -153,7 +153,7 @@ mod tests {
         assert_eq!(radiance, Vec3::splat(4.0));
         let by_name = |n: &str| scene.materials.iter().find(|m| m.name == n).unwrap();
         assert!(by_name("light").area_light && !by_name("glow").area_light);
-        // Switched off, the quad emits through its voxels as before.
+        // Switched off, the quad emits through its voxels.
         let off = load("[gi]\narea_lights = false\n");
         assert!(off.lights.iter().all(|l| !l.is_mesh_emitter()) && !off.materials.iter().any(|m| m.area_light));
     }

@@ -21,7 +21,7 @@ pub struct SceneFile {
 }
 
 /// Cone-tracing and radiance settings (Freed 2018 §4.5.2 Listing 4.1, §4.7.2; the model's
-/// choices are measured in docs/benchmarks.md, "Indirect light against the path tracer").
+/// choices and their measurements: docs/design/cones.md).
 #[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct GiFile {
@@ -51,7 +51,7 @@ pub struct GiFile {
     pub opacity_correction: bool,
     /// Read each directional chain as boxes along its own axis, their optical depths added by
     /// the cone's advance along each axis, opacity corrected for the step (common/cone.glsl; with
-    /// the directional chains only: the isotropic ones are read as before).
+    /// the directional chains only: the isotropic chain is read as usual).
     pub chain_box: bool,
     /// Keep each sample's filter off the receiving surface (common/cone.glsl).
     pub self_clamp: bool,
@@ -71,7 +71,7 @@ pub struct GiFile {
     /// (interleaved gradient noise, Jimenez 2014), so that neighbouring pixels sample their
     /// cones' cells in other directions: a cone reads its footprint round its axis, and where
     /// its cell's light lies off that axis (beside an occluder, below a spotlight's edge) a fixed
-    /// set misses it at every pixel alike (docs/benchmarks.md, "Cone by cone"). Deferred shading
+    /// set misses it at every pixel alike (docs/design/cones.md). Deferred shading
     /// at full resolution then resolves each pixel's gather from its 3×3 neighbours on the same
     /// surface; at a reduced GI scale the upsampling mixes the turns, and forward shading leaves
     /// each pixel its own.
@@ -94,10 +94,9 @@ pub enum Injection {
     Texels,
     /// Each occupied voxel that is the first met from the light looks its lit side up in the
     /// shadow map (as surface shading does, with its PCF): the cost follows the occupied voxels
-    /// (docs/benchmarks.md, "Injection from the voxels"), and a voxel across a shadow edge gets
-    /// its lit side's share. A warped grid, whose texels are not a voxel wide, injects from the
-    /// texels. The default since sixteen cones (docs/benchmarks.md, "Sixteen cones and injection
-    /// from the voxels").
+    /// (docs/design/injection.md), and a voxel across a shadow edge gets its lit side's share. A
+    /// warped grid, whose texels are not a voxel wide, injects from the texels. The default,
+    /// measured together with the sixteen-cone set (docs/design/cones.md).
     #[default]
     Voxels,
 }
@@ -216,8 +215,7 @@ impl GiFile {
             | (if self.turn_cones { CONE_FLAG_TURN } else { 0 })
     }
 
-    /// The model as the thesis has it (Listing 4.1, §4.4): the renderer's defaults before the
-    /// accuracy study.
+    /// The model as the thesis has it (Listing 4.1, §4.4): the baseline of the accuracy study.
     pub fn thesis() -> Self {
         GiFile {
             steps: 48,
@@ -245,11 +243,10 @@ impl GiFile {
 }
 
 impl Default for GiFile {
-    /// The model the accuracy study chose (docs/benchmarks.md, "Indirect light against the path
-    /// tracer"): directional chains, levels matched to the cone's footprint, no filter reaching
-    /// back into the receiving surface, light hidden where it faces away, sixteen narrow cones,
-    /// injection from the voxels (measured together: "Sixteen cones and injection from the
-    /// voxels"), and the cone set turned by pixel ("Cone by cone").
+    /// The model the accuracy study chose (docs/design/cones.md): directional chains, levels
+    /// matched to the cone's footprint, no filter reaching back into the receiving surface, light
+    /// hidden where it faces away, sixteen narrow cones, injection from the voxels (measured
+    /// together with the sixteen cones), and the cone set turned by pixel.
     fn default() -> Self {
         GiFile {
             steps: 256,

@@ -478,7 +478,7 @@ impl Walk<'_> {
 }
 
 /// The crate's validation reads each primitive's POSITION accessor without checking that it
-/// exists (found by the fuzzer): a POSITION index past the accessors is refused here. JSON the
+/// exists: a POSITION index past the accessors is refused here. JSON the
 /// crate cannot read is left to its own error.
 fn check_position_indices(path: &Path, bytes: &[u8]) -> Result<()> {
     let json = match bytes.starts_with(b"glTF") {
@@ -511,7 +511,7 @@ fn check_position_indices(path: &Path, bytes: &[u8]) -> Result<()> {
 pub fn load_gltf(path: &Path, read: ReadFn, warnings: &mut Vec<String>) -> Result<GltfScene> {
     let bytes = read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
     // The crate subtracts the header's size from the length a .glb header declares without a
-    // check (found by the fuzzer): a declared length under 12 bytes is refused here.
+    // check: a declared length under 12 bytes is refused here.
     if bytes.starts_with(b"glTF") {
         let declared = bytes.get(8..12).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
         if declared.is_none_or(|n| n < 12) {

@@ -1,6 +1,6 @@
 //! The scene on the GPU: vertex and index buffers, the material buffer, textures (with mip
 //! chains), the diffuse cone set, the frame uniform buffer, and descriptor set 0 that every
-//! scene-drawing pass and both voxelizers bind (see `common/frame.glsl`). Below the voxelizers
+//! scene-drawing pass and every voxelizer binds (see `common/frame.glsl`). Below the voxelizers
 //! and the render passes: it imports neither.
 
 use std::sync::Arc;
@@ -262,8 +262,8 @@ pub struct SceneGpu {
     pub bounce_cone_count: u32,
     /// Whether any light is an area light: the shaders that light points are specialized on it
     /// (common/light.glsl, VCT_AREA_LIGHTS), since on lavapipe the polygon's code, run for
-    /// every lane whether or not one is an area light, cost spot-lit injection 1.7-2x and the
-    /// deferred shading of every pixel a fifth (docs/benchmarks.md).
+    /// every lane whether or not one is an area light, costs spot-lit injection 1.7-2x and the
+    /// deferred shading of every pixel a fifth (docs/design/injection.md).
     pub area_lights: bool,
     /// Whether any material reflects specularly (its F0 above zero: a specular colour, or a
     /// metal): without one, the specular cone's code and images are left out of the shading

@@ -23,9 +23,9 @@ fn parse_floats(s: &str) -> Option<Vec3> {
 }
 
 /// The perceptual roughness (GGX alpha = roughness², common/brdf.glsl) of a Phong exponent `ns`:
-/// Walter et al. 2007 match the Phong lobe by alpha = sqrt(2 / (ns + 2)). (This took that
-/// alpha for the roughness itself, squaring it once more: the classic Cornell box's boxes, `Ns
-/// 200`, got alpha 0.0099 for the paper's 0.0995, a near mirror.)
+/// Walter et al. 2007 match the Phong lobe by alpha = sqrt(2 / (ns + 2)). (Taking that alpha
+/// for the roughness itself would square it once more: the classic Cornell box's boxes, `Ns
+/// 200`, would get alpha 0.0099 for the paper's 0.0995, a near mirror.)
 pub fn roughness_of_phong(ns: f32) -> f32 {
     (2.0 / (ns.max(0.0) + 2.0)).sqrt().sqrt()
 }
@@ -157,7 +157,7 @@ fn sanitize_mtl(text: &str, path: &Path, warnings: &mut Vec<String>) -> String {
 /// Finds the first face, line or point index that refers to no element: a relative (negative)
 /// index reaching before the first position, texture coordinate or normal, or one no mesh could
 /// use (>= 2^31). tobj 4 turns such indices into huge offsets and multiplies them unchecked,
-/// which panics (found by the fuzzer). Returns the line number and the index.
+/// which panics. Returns the line number and the index.
 fn bad_index(text: &str) -> Option<(usize, i128)> {
     let mut counts = [0i128; 3]; // v, vt, vn so far
     for (n, line) in text.lines().enumerate() {

@@ -85,8 +85,8 @@ pub fn resident_bytes() -> u64 {
 
 /// Soak schedule: the voxelizer moves to the next of its three every 20 frames and the resolution
 /// flips every 30, so frames 60, 180, 300, ... run the same settings; memory is compared between
-/// those frames. (It was three times as long, each switch as often: the test spent six minutes of
-/// `make test` on frames between the same switches.)
+/// those frames. (A schedule three times as long, each switch as often, would spend six minutes
+/// of `make test` on frames between the same switches.)
 pub const SOAK_CYCLE: u32 = 60;
 
 const VIEWS: [View; 12] = [

@@ -36,7 +36,7 @@ pub enum Storage {
     /// Every texture over the whole grid.
     Dense,
     /// A page table and a pool of the occupied bricks (smaller on every scene measured,
-    /// docs/benchmarks.md "Sparse storage").
+    /// docs/design/storage.md).
     Sparse,
     /// Vulkan sparse residency: every texture at the grid's extent (read as dense, without a
     /// table), with memory bound only to the blocks that hold an occupied brick.
@@ -373,7 +373,7 @@ impl Bricks {
         if self.sparse() {
             pool_extent(self.capacity)
         } else {
-            super::volume::extent_of(grid.dims)
+            super::grid::extent_of(grid.dims)
         }
     }
 

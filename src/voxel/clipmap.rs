@@ -4,8 +4,7 @@
 //! voxelizes the same way in every frame and each level's mips group its voxels alike.
 //!
 //! Levels stay inside the scene. Centred on a camera near the scene's end, a level would spend
-//! up to half its voxels on empty space beyond it (measured on Sponza: docs/benchmarks.md,
-//! "Clipmaps"). So a level is moved, by steps, until it lies inside the scene's bounds, or, along
+//! up to half its voxels on empty space beyond it (measured on Sponza: docs/design/clipmaps.md). So a level is moved, by steps, until it lies inside the scene's bounds, or, along
 //! an axis where it is larger than they are, holds them and stays put; the coarsest holds the
 //! whole scene wherever the camera is, and is no larger than that. A face of a level that lies beyond the scene is *open*:
 //! no level holds anything beyond it, so a cone sample near it stays in that level instead of
@@ -20,7 +19,7 @@
 
 use glam::{BVec3, UVec3, Vec3, Vec4};
 
-use super::grid::{VoxelGrid, MAX_RESOLUTION, MIN_RESOLUTION};
+use super::lattice::{MAX_RESOLUTION, MIN_RESOLUTION};
 use crate::error::{Error, Result};
 
 /// Levels the viewer's layout key gives a clipmap.
@@ -34,8 +33,7 @@ pub const MAX_LEVELS: u32 = crate::config::MAX_CLIP_LEVELS;
 /// regroups every mip above 0 across the whole level, and the cones' light jumps: measured on a
 /// slow pan across Sponza's atrium (4 levels of 64, 3 cm a frame), adjacent frames differed by
 /// FLIP 0.0639 on average and 0.0900 at the steps with one-voxel steps, 0.0631 / 0.0816 with two,
-/// and 0.0619 / 0.0629 with four, a fitted grid's 0.0610 / 0.0628 (docs/benchmarks.md,
-/// "Clipmaps"). A step of 2^S voxels keeps mips up to S grouped alike; the price is a level
+/// and 0.0619 / 0.0629 with four, a fitted grid's 0.0610 / 0.0628 (docs/design/clipmaps.md). A step of 2^S voxels keeps mips up to S grouped alike; the price is a level
 /// lagging the camera by up to one step, 1/16 of its reach.
 pub const STEPS_PER_SIDE: u32 = 16;
 
@@ -119,7 +117,7 @@ impl Clipmap {
     /// a voxel to spare and a voxel for its lattice, `default_extent`), each finer level by
     /// `shift · 2^(levels-1-k)` of its own voxels, a different fraction of a voxel at each level.
     pub fn on_lattice(mut self, centre: Vec3, shift: Vec3) -> Result<Self> {
-        if !super::grid::lattice_shift_fits(shift) {
+        if !super::lattice::lattice_shift_fits(shift) {
             return Err(Error::param(
                 "lattice",
                 format!("{shift} moves clipmap levels by at most half a voxel of the coarsest along each axis"),
@@ -174,17 +172,6 @@ impl Clipmap {
         self.voxel(k) * self.res as f32
     }
 
-    /// Level `k` as a grid of its own (what its voxelization pass is given).
-    pub fn level_grid(&self, k: u32) -> VoxelGrid {
-        VoxelGrid {
-            origin: self.origins[k as usize],
-            voxel: self.voxel(k),
-            dims: UVec3::splat(self.res),
-            warp: super::warp::Warp::NONE,
-            clip: None,
-        }
-    }
-
     /// The finest level's extent for `levels` levels of `res` voxels over a scene of `bounds`:
     /// the coarsest holds the whole scene wherever the camera is (the levels stay in the scene),
     /// with half a voxel to spare on every side and up to a voxel more for its lattice, so its
@@ -194,11 +181,6 @@ impl Clipmap {
         let longest = bounds.size().max_element().max(1e-6);
         let coarsest = longest * res as f32 / res.saturating_sub(3).max(1) as f32;
         coarsest / (1u32 << levels.clamp(1, MAX_LEVELS).saturating_sub(1)) as f32
-    }
-
-    /// The stack as the volume's grid: its finest level's origin and voxel, the stack's dims.
-    pub fn stack_grid(&self) -> VoxelGrid {
-        VoxelGrid { clip: Some(*self), dims: self.stack_dims(), ..self.level_grid(0) }
     }
 
     /// For the shaders (`FrameUniforms::clip`, `clip_levels`, `clip_scene`; common/frame.glsl):

@@ -14,18 +14,17 @@ use glam::{UVec3, Vec3};
 
 use super::clipmap::Clipmap;
 use super::warp::Warp;
+use ash::vk;
+
 use crate::error::{Error, Result};
 use crate::scene::Aabb;
 
-pub const MIN_RESOLUTION: u32 = 16;
-pub const MAX_RESOLUTION: u32 = 512;
-
-/// Whether `shift` (voxels along each axis) moves a lattice by at most half a voxel: a fitted
-/// grid's (its one voxel of padding holds it) or a clipmap's, in voxels of its coarsest level
-/// (`Clipmap::on_lattice`). `RenderOptions::lattice`, `vct bench --accuracy --lattices`.
-pub fn lattice_shift_fits(shift: Vec3) -> bool {
-    shift.is_finite() && shift.abs().max_element() <= 0.5
+/// The image extent of a grid's dims.
+pub fn extent_of(dims: glam::UVec3) -> vk::Extent3D {
+    vk::Extent3D { width: dims.x, height: dims.y, depth: dims.z }
 }
+
+pub use super::lattice::{lattice_shift_fits, MAX_RESOLUTION, MIN_RESOLUTION};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VoxelGrid {
@@ -209,5 +208,24 @@ impl VoxelGrid {
     pub fn coords(&self, i: usize) -> UVec3 {
         let (nx, ny) = (self.dims.x as usize, self.dims.y as usize);
         UVec3::new((i % nx) as u32, ((i / nx) % ny) as u32, (i / (nx * ny)) as u32)
+    }
+}
+
+/// A clipmap's levels as grids.
+impl Clipmap {
+    /// Level `k` as a grid of its own (what its voxelization pass is given).
+    pub fn level_grid(&self, k: u32) -> VoxelGrid {
+        VoxelGrid {
+            origin: self.origins[k as usize],
+            voxel: self.voxel(k),
+            dims: UVec3::splat(self.res),
+            warp: Warp::NONE,
+            clip: None,
+        }
+    }
+
+    /// The stack as the volume's grid: its finest level's origin and voxel, the stack's dims.
+    pub fn stack_grid(&self) -> VoxelGrid {
+        VoxelGrid { clip: Some(*self), dims: self.stack_dims(), ..self.level_grid(0) }
     }
 }

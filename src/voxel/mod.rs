@@ -8,6 +8,7 @@ pub mod bricks;
 pub mod clipmap;
 pub mod grid;
 pub mod headless;
+pub mod lattice;
 pub mod occupied;
 pub mod perspective;
 pub mod points;
@@ -43,8 +44,8 @@ pub enum Coverage {
     Conservative,
     /// Exact coverage by the fastest conservative path the device has: `Hardware` where it
     /// offers the extension, else `Conservative`. Both are exact on every mesh measured; on an
-    /// NVIDIA H200 the extension voxelized Sponza 7–16× faster than the geometry shader
-    /// (docs/benchmarks.md, "On a GPU"). Resolved when the voxelizer is built ([`Coverage::on`]).
+    /// NVIDIA H200 the extension voxelizes Sponza 7–16× faster than the geometry shader
+    /// (docs/report/README.md). Resolved when the voxelizer is built ([`Coverage::on`]).
     Auto,
 }
 
@@ -86,9 +87,9 @@ pub enum VoxelizeMethod {
 }
 
 /// Default tessellation level scale: the thesis' levels. Alone they miss voxels along
-/// diagonals (recall 0.947 on the Cornell box at 128³; scale 3 gave 0.994 at 2.6× the time);
+/// diagonals (recall 0.947 on the Cornell box at 128³; scale 3 gives 0.994 at 2.6× the time);
 /// with the neighbour fill below, every voxel a triangle touches lies next to a sample, and
-/// scale 1 is exact (docs/benchmarks.md, "Hostile geometry").
+/// scale 1 is exact (docs/design/voxelizers.md).
 pub const DEFAULT_LEVEL_SCALE: f32 = 1.0;
 
 /// The tessellation path fills the empty voxels around each evaluation point that its
@@ -251,7 +252,7 @@ impl ParamsUbo {
     }
 }
 
-/// Set 2 of both voxelizers: their parameters and the volume's storage images.
+/// Set 2 of every voxelizer: their parameters and the volume's storage images.
 pub(crate) fn voxel_set(
     ctx: &Arc<Context>,
     volume: &VoxelVolume,
@@ -306,7 +307,7 @@ pub(crate) fn params_for(
     }
 }
 
-/// One of the two voxelizers, ready to record.
+/// One of the three voxelizers, ready to record.
 #[allow(clippy::large_enum_variant)] // one per renderer
 pub enum Voxelizer {
     Tess(tess::TessVoxelizer),
@@ -341,7 +342,7 @@ impl Voxelizer {
     /// are voxelized one after another, each as a grid of its own written into its slab of the
     /// stack (`voxel::clipmap`), every frame: a level is as cheap to voxelize whole as the part of
     /// it that scrolled in is to find, where a frame's voxelization is a few percent of it
-    /// (docs/benchmarks.md, "Clipmaps").
+    /// (docs/design/clipmaps.md).
     pub fn record(&self, cmd: vk::CommandBuffer, scene_gpu: &SceneGpu, volume: &VoxelVolume) {
         volume.record_clear(cmd);
         let params = self.params();

@@ -33,7 +33,7 @@ use crate::scene::gpu::{vertex_layout_untangented, MeshBuffers, SceneGpu};
 use crate::scene::{Draw, Mesh, Scene, Vertex};
 
 /// Sample points per voxel area (a triangle of area A gets ceil(density · A / voxel²), at
-/// least one). Chosen by measurement (docs/benchmarks.md, "Point voxelizer").
+/// least one). Chosen by measurement (docs/design/voxelizers.md).
 pub const DEFAULT_POINT_DENSITY: f32 = 4.0;
 
 /// More points than this is refused: the buffer would pass 400 MiB.
@@ -220,8 +220,8 @@ pub enum PointSource {
     Gpu,
 }
 
-/// The chosen source (docs/benchmarks.md, "Point voxelizer": scattering at load was faster at
-/// every size measured, for a buffer of 48 bytes a point).
+/// The chosen source (docs/design/voxelizers.md: scattering at load is faster at every size
+/// measured, for a buffer of 48 bytes a point).
 pub const DEFAULT_POINT_SOURCE: PointSource = PointSource::Load;
 
 /// The points, as each source keeps them.

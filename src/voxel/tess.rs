@@ -18,7 +18,7 @@ use crate::scene::Scene;
 
 /// Triangles are split at load until no tessellation level passes this bound, so that no patch
 /// is huge: a per-patch CPU tessellator (lavapipe) runs patches in parallel, and a few huge ones
-/// serialize. Measured on the Cornell box (docs/benchmarks.md, "Hostile geometry"): at 128³ the
+/// serialize. Measured on the Cornell box (docs/design/voxelizers.md): at 128³ the
 /// device limit (64) gives 2187 ms, 16 gives 872, 8 gives 625, 4 gives 798 (too many patches),
 /// with recall unchanged (0.994).
 pub const PATCH_LEVEL_BOUND: f32 = 8.0;

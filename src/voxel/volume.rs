@@ -8,6 +8,7 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::bricks::{Bricks, Storage};
+pub use super::grid::extent_of;
 use super::occupied::OccupiedVoxels;
 use super::VoxelGrid;
 use crate::error::{Error, Result};
@@ -45,11 +46,6 @@ pub const VOXEL_TEXTURES: [&str; 3] = ["voxel albedo", "voxel normal", "voxel em
 pub fn voxel_desc(extent: vk::Extent3D) -> ImageDesc {
     let usage = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
     ImageDesc::d3_extent(VOXEL_FORMAT, extent, usage)
-}
-
-/// The image extent of a grid's dims.
-pub fn extent_of(dims: glam::UVec3) -> vk::Extent3D {
-    vk::Extent3D { width: dims.x, height: dims.y, depth: dims.z }
 }
 
 fn largest_device_heap(ctx: &Context) -> u64 {
@@ -139,7 +135,7 @@ impl VoxelVolume {
         self.rebrick(bricks)
     }
 
-    /// Stores the textures in `bricks`' layout from now on: new textures and list, the list's
+    /// Stores the textures in `bricks`' layout from here on: new textures and list, the list's
     /// pipeline kept (the GPU must be idle; rebind the voxelizer after).
     pub fn rebrick(&mut self, bricks: Bricks) -> Result<()> {
         let ctx = &self.ctx;

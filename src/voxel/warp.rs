@@ -17,9 +17,8 @@
 //! [`Warp`] is the layout's choice: even texels, this function, or the perspective warp of §4.6.2
 //! (`voxel::perspective`).
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
-use super::perspective::Perspective;
 use crate::error::{Error, Result};
 
 /// The thesis' end slope (§4.6.1: "for our implementation, α = 0.25").
@@ -42,21 +41,60 @@ impl WarpChoice {
             WarpChoice::Perspective(r) => format!("warp perspective {r}"),
         }
     }
+}
 
-    /// `grid` (fitted to `bounds`) warped as chosen, its finest texels at `camera`: the
-    /// perspective warp holds as many texels as the grid (`VoxelGrid::perspective_dims`).
-    pub fn apply(
-        &self,
-        grid: super::VoxelGrid,
-        camera: &crate::scene::Camera,
-        bounds: &crate::scene::Aabb,
-    ) -> Result<super::VoxelGrid> {
-        match *self {
-            WarpChoice::Function(s) => grid.warped(camera.eye, s),
-            WarpChoice::Perspective(r) => {
-                super::VoxelGrid::perspective(camera, bounds, super::VoxelGrid::perspective_dims(&grid, camera), r)
-            }
-        }
+/// The near texels' width over the far ones' by default (the thesis' function warp's end slope).
+pub const DEFAULT_RATIO: f32 = 0.25;
+
+/// A projective map of grid fractions onto texture fractions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Perspective {
+    /// Grid fraction (x, 1) to texture fraction times w: t = (H x).xyz / (H x).w, where w is the
+    /// distance from the frustum's apex (world units).
+    pub to_texel: DMat4,
+    /// The inverse of `to_texel`.
+    pub from_texel: DMat4,
+    /// The apex's distance behind the eye, e (the near plane's w).
+    pub near: f64,
+    /// e / (e + D): the near texels' width over the far ones'.
+    pub ratio: f32,
+}
+
+impl Perspective {
+    /// The texture fraction of grid fraction `x`; `None` within half the near plane's distance
+    /// of the apex or behind it (no texel lies there; the shaders clip there too).
+    pub fn forward(&self, x: DVec3) -> Option<DVec3> {
+        let q = self.to_texel * x.extend(1.0);
+        (q.w > 0.5 * self.near).then(|| q.truncate() / q.w)
+    }
+
+    /// The grid fraction of texture fraction `t`.
+    pub fn inverse(&self, t: DVec3) -> DVec3 {
+        let q = self.from_texel * t.extend(1.0);
+        q.truncate() / q.w
+    }
+
+    /// Texels per grid voxel at grid fraction `x`, as one size: the cube root of the map's
+    /// Jacobian determinant, det H / w⁴ for a projective map.
+    pub fn slope(&self, x: DVec3) -> f64 {
+        let w = (self.to_texel * x.extend(1.0)).w.max(0.5 * self.near);
+        (self.to_texel.determinant().abs() / w.powi(4)).cbrt()
+    }
+
+    /// Texels per grid voxel on the near plane, where they are finest.
+    pub fn peak_slope(&self) -> f64 {
+        (self.to_texel.determinant().abs() / self.near.powi(4)).cbrt()
+    }
+
+    /// `vec4 warp` of the shaders: the peak slope, the cube root of |det H|, the w triangles are
+    /// clipped at (half the near plane's), and 0 (the perspective warp's mark).
+    pub fn gpu(&self) -> Vec4 {
+        Vec4::new(
+            self.peak_slope() as f32,
+            self.to_texel.determinant().abs().cbrt() as f32,
+            (0.5 * self.near) as f32,
+            0.0,
+        )
     }
 }
 

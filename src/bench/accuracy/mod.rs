@@ -13,7 +13,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::Vec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::reference_cached;
 use crate::error::Result;
@@ -136,7 +136,7 @@ pub struct Judged {
 /// Splits the pixels that see a surface into thirds by its distance from the camera, equal in
 /// pixels: 0 near, 1 middle, 2 far (None: no surface). Returns each pixel's third and the two
 /// distances that part them. A camera among a large scene's near detail and far walls
-/// (issue "detail where the camera is") is judged in each third: a layout that spends its voxels
+/// is judged in each third: a layout that spends its voxels
 /// near the camera should gain in the near third and may pay in the far one.
 pub fn distance_bands(distance: &[Option<f32>]) -> (Vec<Option<u8>>, [f32; 2]) {
     let mut sorted: Vec<f32> = distance.iter().flatten().copied().collect();
@@ -181,7 +181,7 @@ impl Judged {
 }
 
 /// One region's indirect light, renderer against reference.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct RegionRow {
     pub region: String,
     pub pixels: usize,
@@ -219,7 +219,7 @@ pub fn region_log_error_text(regions: &[RegionRow]) -> String {
 }
 
 /// One variant on one scene.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct AccuracyRow {
     pub scene: String,
     pub variant: String,
@@ -235,12 +235,15 @@ pub struct AccuracyRow {
     pub mean_ratio: f32,
     /// Mean FLIP over each third of the surface pixels by distance from the camera (near, middle,
     /// far; `Judged::distance_band`).
+    #[serde(default)]
     pub flip_by_distance: [f32; 3],
     /// The distances (m) that part the thirds.
+    #[serde(default)]
     pub distance_edges: [f32; 2],
     pub regions: Vec<RegionRow>,
     pub reference_noise: f32,
     /// The same variant on other placements of the lattice (`measure_lattices`).
+    #[serde(default)]
     pub lattices: Option<LatticeSpread>,
     #[serde(skip)]
     pub flip_map: Vec<u8>,
@@ -257,7 +260,7 @@ pub struct AccuracyRow {
 /// How a row's figures move when its lattice is moved by less than a voxel (a fitted grid's, or
 /// a clipmap's by less than a voxel of its coarsest level, `Clipmap::on_lattice`): the
 /// least, the mean and the most over the placements measured, the row's own among them.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct LatticeSpread {
     pub placements: u32,
     pub flip: [f32; 3],

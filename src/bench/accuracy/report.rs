@@ -133,7 +133,9 @@ pub fn write(dir: &Path, rows: &[AccuracyRow], maps_of_defaults: bool) -> Result
     }
     files.push(put("accuracy.csv", &csv)?);
     files.push(put("summary.md", &summary(rows))?);
-    for r in rows.iter().filter(|r| !maps_of_defaults || r.variant == "default" || r.variant == "thesis") {
+    // Rows read back from accuracy.json carry no images.
+    let imaged = rows.iter().filter(|r| !r.flip_map.is_empty());
+    for r in imaged.filter(|r| !maps_of_defaults || r.variant == "default" || r.variant == "thesis") {
         let slug: String = format!("flip-{}-{}-{}", r.scene, r.variant, r.resolution)
             .chars()
             .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })

@@ -1,5 +1,4 @@
-//! `vct bench --accuracy`: the GI model against path-traced references (docs/benchmarks.md,
-//! "Indirect light against the path tracer"): the scenes' own model, the study's variants, the
+//! `vct bench --accuracy`: the GI model against path-traced references (docs/design/measurement.md): the scenes' own model, the study's variants, the
 //! layouts (warped grids, clipmaps) with their lattice spreads and pans, and the per-cone split.
 
 use std::path::Path;
@@ -9,7 +8,7 @@ use vct::gpu::Context;
 use vct::scene::Scene;
 
 use crate::bench_args::BenchArgs;
-use crate::check_validation;
+use crate::common::check_validation;
 
 /// Pixels of each region the per-cone comparison traces (its reference draws `--spp` directions
 /// at each): a region's mean light through a cell then has the noise of 256 × spp / cones draws.
