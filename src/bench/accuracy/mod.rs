@@ -193,6 +193,7 @@ pub struct RegionRow {
     /// reference indirect light is at least `JUDGED_SHARE` of the brightest region's. A region
     /// the reference leaves nearly dark (a face seen edge-on, a recess no bounce reaches) has a
     /// ratio of noise over nearly nothing: one of Sponza's read 10⁶.
+    #[serde(default)]
     pub judged: bool,
 }
 

@@ -47,8 +47,10 @@ pub struct Stamp {
 }
 
 impl Stamp {
-    /// The stamp of a run on `ctx` that took `seconds`.
-    pub fn now(ctx: &Context, suite: &Suite, seconds: f64) -> Stamp {
+    /// The commit of the tree in the current folder, `+changes` where it has uncommitted
+    /// changes to tracked files: taken when a run starts, since it measures the binary built
+    /// from that tree.
+    pub fn commit() -> String {
         let git = |args: &[&str]| {
             std::process::Command::new("git")
                 .args(args)
@@ -57,14 +59,15 @@ impl Stamp {
                 .filter(|o| o.status.success())
                 .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
         };
-        let commit = match (
-            git(&["rev-parse", "--short=12", "HEAD"]),
-            git(&["status", "--porcelain", "--untracked-files=no"]),
-        ) {
+        match (git(&["rev-parse", "--short=12", "HEAD"]), git(&["status", "--porcelain", "--untracked-files=no"])) {
             (Some(c), Some(dirty)) if !dirty.is_empty() => format!("{c}+changes"),
             (Some(c), _) => c,
             (None, _) => "unknown".into(),
-        };
+        }
+    }
+
+    /// The stamp of a run on `ctx`, of the tree at `commit`, that took `seconds`.
+    pub fn now(ctx: &Context, suite: &Suite, commit: String, seconds: f64) -> Stamp {
         let cpu = std::fs::read_to_string("/proc/cpuinfo")
             .ok()
             .and_then(|t| {
@@ -169,6 +172,7 @@ pub fn measure_light(
 /// the report's files.
 pub fn run(ctx: &Arc<Context>, dir: &Path, suite: Suite, progress: &dyn Fn(&str)) -> Result<Vec<PathBuf>> {
     let start = std::time::Instant::now();
+    let commit = Stamp::commit();
     let data = dir.join("data");
     let quick = suite.quick;
     let size = |mut s: Scene| -> Result<Scene> {
@@ -195,7 +199,20 @@ pub fn run(ctx: &Arc<Context>, dir: &Path, suite: Suite, progress: &dyn Fn(&str)
     light_scenes.extend(given);
     let (resolutions, spp, frames) = if quick { (vec![32], 16, 1) } else { (vec![64, 128, 256], 2048, 3) };
     let light = measure_light(ctx, light_scenes, &resolutions, spp, frames, &suite.cache, progress)?;
-    accuracy::write(&data.join("accuracy"), &light, false)?;
+    // The report shows the images (FLIP map, indirect light beside the reference's) of the
+    // scenes' own grid, the middle resolution; the others' are not kept.
+    let shown = resolutions[resolutions.len() / 2];
+    let imaged: Vec<AccuracyRow> = light
+        .iter()
+        .cloned()
+        .map(|mut r| {
+            if r.resolution != shown {
+                r.flip_map.clear();
+            }
+            r
+        })
+        .collect();
+    accuracy::write(&data.join("accuracy"), &imaged, false)?;
 
     let regimes = stability::run(ctx, quick, progress)?;
     let mut rows = Vec::new();
@@ -204,7 +221,7 @@ pub fn run(ctx: &Arc<Context>, dir: &Path, suite: Suite, progress: &dyn Fn(&str)
     }
     stability::write(&data.join("stability"), &regimes, &rows)?;
 
-    let stamp = Stamp::now(ctx, &suite, start.elapsed().as_secs_f64());
+    let stamp = Stamp::now(ctx, &suite, commit, start.elapsed().as_secs_f64());
     write_json(&data.join("stamp.json"), &stamp)?;
     keep_svg_charts(&data)?;
     page::write(dir)

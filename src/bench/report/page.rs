@@ -247,6 +247,30 @@ fn light(rows: &[AccuracyRow]) -> String {
     s
 }
 
+/// The images the indirect-light run kept (`indirect-*.png`: the reference's indirect light
+/// beside the renderer's; `flip-*.png`: the FLIP map), linked in the order of their names.
+fn light_images(dir: &Path, d: &Path) -> Result<String> {
+    let mut names: Vec<String> = std::fs::read_dir(d)
+        .map_err(|source| Error::Io { path: d.to_path_buf(), source })?
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".png") && (n.starts_with("indirect-") || n.starts_with("flip-")))
+        .collect();
+    names.sort_by_key(|n| {
+        (n.trim_start_matches("indirect-").trim_start_matches("flip-").to_string(), n.starts_with("flip-"))
+    });
+    let rel = d.strip_prefix(dir).unwrap_or(d);
+    let mut s = String::new();
+    if !names.is_empty() {
+        s += "\nThe indirect light alone, the reference's (left) beside vct's (right), both scaled by four and \
+              tone-mapped alike, and the FLIP map of the whole frame:\n\n";
+    }
+    for n in names {
+        let _ = writeln!(s, "![{}]({}/{n})\n", n.trim_end_matches(".png"), rel.display());
+    }
+    Ok(s)
+}
+
 /// A regime's points as a table: x down, one column a series; a regime of many series (the
 /// flicker's cases over frames) as one row a series, with its mean and its most over x.
 fn regime_table(g: &Regime) -> String {
@@ -330,12 +354,8 @@ pub fn sections(dir: &Path, sub: &str, data: &Data) -> Result<Vec<Section>> {
         let d = root.join("accuracy");
         std::fs::create_dir_all(&d).map_err(|source| Error::Io { path: d.clone(), source })?;
         charts::draw_accuracy(&d, &data.accuracy, charts::Cost::Time)?;
-        push(
-            "light",
-            "Does the indirect light agree with the path tracer?",
-            light(&data.accuracy),
-            vec![svg_of(&d, "accuracy")],
-        );
+        let md = light(&data.accuracy) + &light_images(dir, &d)?;
+        push("light", "Does the indirect light agree with the path tracer?", md, vec![svg_of(&d, "accuracy")]);
     }
     if !data.stability.is_empty() {
         let d = root.join("stability");
