@@ -1,7 +1,7 @@
 //! The viewer keeps last frame's volume when nothing it depends on changed
-//! (`RenderOptions::reuse_volume`). A still frame then runs no volume pass and shows the same
-//! image; turning the light builds the volume again from the voxels it kept, and the frame matches
-//! a renderer that builds every frame. Lavapipe, validation on.
+//! (`RenderOptions::reuse_volume`). A still frame then runs no volume pass and no trace and
+//! shows the same image; turning the light builds the volume again from the voxels it kept, and
+//! the frame matches a renderer that builds every frame. Lavapipe, validation on.
 
 mod common;
 
@@ -28,6 +28,8 @@ fn a_kept_volume_skips_its_passes_and_a_turned_light_builds_it_again() {
     passes(&r);
     let kept = passes(&r);
     assert!(volume.iter().all(|p| !kept.iter().any(|q| q == p)), "a still frame rebuilt the volume: {kept:?}");
+    // The traced light is kept too: the split set's partial gathers are what tracing would write.
+    assert!(first.iter().any(|q| q == "trace") && !kept.iter().any(|q| q == "trace"), "{first:?} {kept:?}");
     let still = r.read_frame().unwrap();
     let same = difference(&still, &built, |_| true);
     assert!(same < 1e-6, "the kept volume shades differently: {same}");
@@ -35,6 +37,7 @@ fn a_kept_volume_skips_its_passes_and_a_turned_light_builds_it_again() {
     r.scene.camera.eye += glam::Vec3::new(0.1, 0.0, 0.0);
     let moved = passes(&r);
     assert!(!moved.iter().any(|q| q == "voxelize"), "{moved:?}");
+    assert!(moved.iter().any(|q| q == "trace"), "the camera moved and nothing was traced: {moved:?}");
     // Turning the light builds it again, as a renderer that builds every frame does, from the
     // voxels it kept: a light does not change them.
     let light = r.scene.lights.first_mut().unwrap();

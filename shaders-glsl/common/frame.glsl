@@ -24,7 +24,8 @@ layout(set = 0, binding = 0) uniform FrameUniforms {
     vec4 voxel_grid;    // x: longest axis N; y: radiance mip levels; z: temporal blend factor (1 = off); w: first frame
     vec4 cone;          // x: max steps; y: bias along the normal (voxels); z: start distance (voxels); w: LOD offset
     vec4 cone_model;    // x: surface cones in `cones`; y: step (of a texel); z: CONE_FLAG_*; w: bounce cones (from MAX_CONES)
-    vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0)
+    vec4 view;          // x: VIEW_*; y: radiance level shown; z: GI on (1) or off (0); w: the cone
+                        // set's turn phase (a share of a turn added at every pixel)
     vec4 history_shift; // xyz: this frame's grid origin in the previous frame's grid (voxels)
     vec4 voxel_dims;    // xyz: voxels along each axis
     vec4 aniso_atlas;   // the directional chains' atlas (render::radiance::AtlasLayout): x: the axis they are

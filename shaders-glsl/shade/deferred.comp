@@ -37,6 +37,13 @@ layout(constant_id = 8) const bool SPECULAR_MATERIALS = true;
 // own: at full resolution the cones are traced into `diffuse_low` (PASS_TRACE), or accumulated
 // (`history_out`), and the shading resolves each pixel's from its neighbours' (`resolved_gather`).
 layout(constant_id = 9) const bool RESOLVE = false;
+// Constant 10: the set is split among each 2×2 block of traced pixels (GiFile::split_cones,
+// common/gather.glsl): each traced pixel traces a quarter of it into `diffuse_low`, and the
+// resolve gathers each quarter from the neighbours that traced it (`split_resolved`): in the
+// shading pass at full resolution, in a pass of its own over the traced pixels (PASS_RESOLVE) at
+// a reduced scale.
+layout(constant_id = 10) const bool SPLIT = false;
+const int SPLIT_RADIUS = 2;
 #define VCT_AREA_LIGHTS AREA_LIGHTS
 #define VCT_SPECULAR SPECULAR_MATERIALS
 #include "frame.glsl"
@@ -64,6 +71,9 @@ layout(set = 2, binding = 13, rgba32ui) uniform writeonly uimage2D surface_out;
 layout(set = 2, binding = 14, rgba16f) uniform image2D specular_low;
 layout(set = 2, binding = 15, rgba16f) uniform readonly image2D specular_history_in;
 layout(set = 2, binding = 16, rgba16f) uniform image2D specular_history_out;
+// With SPLIT at a reduced scale: each traced pixel's gather resolved from its neighbours' quarters
+// (PASS_RESOLVE), which the upsampling reads in place of `diffuse_low`.
+layout(set = 2, binding = 17, rgba16f) uniform image2D diffuse_resolved;
 
 #include "shading.glsl"
 
@@ -74,6 +84,7 @@ layout(constant_id = 6) const bool SPECULAR_REDUCED = false;
 const uint PASS_SHADE = 0;
 const uint PASS_TRACE = 1;
 const uint PASS_ACCUMULATE = 2;
+const uint PASS_RESOLVE = 3;
 
 // The G-buffer at `px`: false for background; else the world position and shading normal.
 bool surface_at(ivec2 px, out vec3 world, out vec3 n) {
@@ -109,7 +120,7 @@ vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec)
     spec = vec4(0.0);
     if (own) {
         if (SPECULAR_REDUCED) spec = imageLoad(specular_low, cell);
-        return imageLoad(diffuse_low, cell);
+        return SPLIT ? imageLoad(diffuse_resolved, cell) : imageLoad(diffuse_low, cell);
     }
     vec2 t = f - vec2(base);
     float plane = 0.5 * frame.voxel_origin.w;
@@ -120,7 +131,7 @@ vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec)
         ivec2 q = clamp(base + o, ivec2(0), size - 1);
         vec3 wq, nq;
         if (!surface_at(traced_pixel(q), wq, nq)) continue;
-        vec4 g = imageLoad(diffuse_low, q);
+        vec4 g = SPLIT ? imageLoad(diffuse_resolved, q) : imageLoad(diffuse_low, q);
         vec4 s = SPECULAR_REDUCED ? imageLoad(specular_low, q) : vec4(0.0);
         float d = abs(dot(wq - world, n)) + plane * max(0.9 - dot(nq, n), 0.0) * 10.0;
         if (d < closest) {
@@ -142,15 +153,55 @@ vec4 upsampled_gather(ivec2 px, vec3 world, vec3 n, out bool own, out vec4 spec)
     return total > 0.0 ? sum / total : nearest;
 }
 
+// The split set's gather at traced pixel `q` of `diffuse_low` (its surface at `world`, normal
+// `n`): each quarter's mean over the 5×5 traced pixels around it of its class on the surface, and
+// the quarters summed. The weights, 1, 2, 2, 2, 1 along each axis, give each of a class's turns
+// (common/gather.glsl, split_turn) the same share. A quarter no neighbour on the surface traced (a
+// silhouette, a one-pixel sliver) is stood in for by the others, scaled by the cone weight they
+// hold against the set's.
+vec4 split_resolved(ivec2 q, vec3 world, vec3 n) {
+    ivec2 size = imageSize(diffuse_low);
+    float plane = 0.5 * frame.voxel_origin.w;
+    vec4 sums[SPLIT_CLASSES] = vec4[](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    float weights[SPLIT_CLASSES] = float[](0.0, 0.0, 0.0, 0.0);
+    const int r = SPLIT_RADIUS, side = 2 * r + 1;
+    for (int i = 0; i < side * side; i++) {
+        ivec2 o = ivec2(i % side - r, i / side - r);
+        ivec2 p = q + o;
+        vec3 wp, np;
+        if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) continue;
+        if (!surface_at(traced_pixel(p), wp, np) || dot(np, n) < 0.9 || abs(dot(wp - world, n)) > plane) continue;
+        // 1, 2, 2, 2, 1 along each axis: a class's pixels at even offsets weigh 1 + 2 + 1, at odd
+        // ones 2 + 2, and its blocks of either parity alike.
+        float w = float((abs(o.x) == r ? 1 : 2) * (abs(o.y) == r ? 1 : 2));
+        int c = split_class(p);
+        sums[c] += w * imageLoad(diffuse_low, p);
+        weights[c] += w;
+    }
+    vec4 sum = vec4(0.0);
+    float held = 0.0, all = 0.0;
+    for (int c = 0; c < SPLIT_CLASSES; c++) {
+        float k = split_weight(c);
+        all += k;
+        if (weights[c] > 0.0) {
+            sum += sums[c] / weights[c];
+            held += k;
+        }
+    }
+    return sum * (all / max(held, 1e-6));
+}
+
 // The diffuse gather at `px` (at `world`, normal `n`) resolved from the cones traced at the 3×3
 // pixels around it, each with the set turned by its own angle (common/gather.glsl, cone_turn):
 // the mean of those on the same surface (normal within ~25 degrees, position within half a
 // voxel of this pixel's tangent plane, as `upsampled_gather` judges), this pixel's own always
 // among them. A turned set leaves each pixel's light off by where its cones fell; nine turns
 // together sample each cone's cell in nine directions (docs/design/cones.md).
+// With SPLIT at full resolution, `split_resolved`.
 vec4 resolved_gather(ivec2 px, vec3 world, vec3 n) {
     ivec2 size = ivec2(frame.viewport.xy);
     float plane = 0.5 * frame.voxel_origin.w;
+    if (SPLIT && GI_SCALE == 1u) return split_resolved(px, world, n);
     vec4 sum = vec4(0.0);
     float total = 0.0;
     for (int i = 0; i < 9; i++) {
@@ -232,6 +283,14 @@ bool history_at(ivec2 px, vec3 world, vec3 n, out vec4 h, out vec4 hs, out bool 
     return total > 0.0 || guessed > 0.0;
 }
 
+// With SPLIT, the trace pass's pixel for invocation pixel `p`: each quadrant of the workgroup's
+// tile takes one class's pixels of the whole tile, so a SIMD group traces one quarter of the set.
+ivec2 split_pixel(ivec2 p) {
+    const int h = WORKGROUP_2D / 2;
+    ivec2 tile = p / WORKGROUP_2D * WORKGROUP_2D, l = p - tile;
+    return tile + 2 * (l % h) + l / h;
+}
+
 // The pixel of this invocation: the workgroup in tiles of 4 x 2, so that eight consecutive
 // invocations (a SIMD group on lavapipe's 256-bit vectors) cover a compact patch, whose cones end
 // after more nearly the same number of steps than those of a row of eight. Measured (lavapipe):
@@ -249,7 +308,15 @@ ivec2 invocation_pixel() {
 
 void main() {
     ivec2 px = invocation_pixel();
+    if (PASS == PASS_RESOLVE) {
+        if (any(greaterThanEqual(px, imageSize(diffuse_low)))) return;
+        vec3 world, n;
+        bool on = frame.view.z > 0.5 && surface_at(traced_pixel(px), world, n);
+        imageStore(diffuse_resolved, px, on ? split_resolved(px, world, n) : vec4(0.0));
+        return;
+    }
     if (PASS == PASS_TRACE) {
+        if (SPLIT) px = split_pixel(px);
         if (any(greaterThanEqual(px, imageSize(diffuse_low)))) return;
         vec3 world, n;
         vec4 g = vec4(0.0), s = vec4(0.0);
@@ -257,7 +324,12 @@ void main() {
         if (frame.view.z > 0.5 && surface_at(traced, world, n)) {
             vec3 uvw = world_to_march(world);
             ConeParams p = frame_cone_params();
-            g = gather_diffuse(uvw, n, p, traced);
+            // Split, the class and turn are the traced grid's (at full resolution, the pixel's).
+            // Where a 3×3 resolve gathers the traced pixels (at full resolution, or from the
+            // accumulated history), the whole set turns in ordered ninths of the traced pixel.
+            g = SPLIT     ? gather_diffuse_split(uvw, n, p, px)
+                : RESOLVE ? gather_diffuse_resolved(uvw, n, p, traced)
+                          : gather_diffuse(uvw, n, p, traced);
             if (SPECULAR_REDUCED) {
                 vec4 a = imageLoad(gbuffer_albedo, traced);
                 Material m = materials[uint(a.w + 0.5)];

@@ -16,7 +16,7 @@ const FONT_PATHS: [&str; 2] =
     ["/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", "/usr/share/fonts/dejavu/DejaVuSans.ttf"];
 
 /// Registers DejaVu Sans as "sans-serif" for chart text (Debian/Ubuntu: fonts-dejavu-core).
-fn ensure_font() -> Result<()> {
+pub(crate) fn ensure_font() -> Result<()> {
     static FONT: std::sync::OnceLock<std::result::Result<(), String>> = std::sync::OnceLock::new();
     FONT.get_or_init(|| {
         let bytes = FONT_PATHS.iter().find_map(|p| std::fs::read(p).ok()).ok_or_else(|| {
@@ -68,7 +68,7 @@ pub struct Regime {
     pub series: Vec<Series>,
 }
 
-type DrawResult<DB> = std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+pub(crate) type DrawResult<DB> = std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// The finite values' range, padded by a tenth of its span (at least 1e-3 each side); 0..1
 /// where no value is finite. Plotters searches for ticks forever in an infinite range.
@@ -558,7 +558,13 @@ fn accuracy_chart<DB: DrawingBackend>(
         let front = pareto(&pts, false);
         chart.draw_series(LineSeries::new(front.iter().map(|&i| pts[i]), BLACK.stroke_width(1)))?;
         chart.draw_series(mine.iter().zip(&pts).map(|(r, p)| {
-            let c = if r.variant.starts_with("default") { PALETTE[0] } else { PALETTE[1] };
+            let c = if r.variant.starts_with("quality ") {
+                PALETTE[2]
+            } else if r.variant.starts_with("default") {
+                PALETTE[0]
+            } else {
+                PALETTE[1]
+            };
             EmptyElement::at(*p)
                 + Circle::new((0, 0), 3, c.filled())
                 + Text::new(format!("{} {}", r.variant, r.resolution), (4, -10), ("sans-serif", 9))

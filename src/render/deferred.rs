@@ -71,10 +71,14 @@ pub struct DeferredShadePass {
     trace_pipeline: Option<Pipeline>,
     /// Their upsampling and accumulation into the history (with accumulation only).
     accumulate_pipeline: Option<Pipeline>,
+    /// The split set's resolve over the traced pixels (a split set at a reduced scale only).
+    resolve_pipeline: Option<Pipeline>,
     /// Their gather (a 1×1 stand-in at scale 1).
     diffuse_low: Image,
     /// The specular cone's light at the same pixels, when it follows the scale (else 1×1).
     specular_low: Image,
+    /// The split set's gathers resolved at the traced pixels (else 1×1).
+    diffuse_resolved: Image,
     /// Two sets, one a parity of the frame count: each reads one history pair, writes the other.
     set: DescriptorSet,
     albedo: Image,
@@ -94,11 +98,11 @@ pub struct DeferredShadePass {
 }
 
 impl DeferredShadePass {
-    /// `anisotropic`: cones sample the six directional chains (specialization constant);
+    /// `gi`: the model (its filter, whether the cones turn and split; specialization constants);
     /// `gi_scale`: the diffuse cones run at one pixel in `gi_scale`² (1, 2, 4 or 8); `accumulate`:
     /// screen-space accumulation of them over frames (with `gi_scale` > 1); `reduced_specular`:
-    /// the specular cone runs with them (else at every pixel); `turned`: the cone set turns by
-    /// pixel (`GiFile::turn_cones`), so where every pixel holds a gather of its own (scale 1,
+    /// the specular cone runs with them (else at every pixel). Where the cone set turns by
+    /// pixel (`GiFile::turn_cones`) and every pixel holds a gather of its own (scale 1,
     /// whose cones are then traced into an image of their own, or accumulation) each pixel takes
     /// the mean of its 3×3 neighbours on its surface (`resolved_gather` in shade/deferred.comp),
     /// nine turns of the set.
@@ -110,13 +114,14 @@ impl DeferredShadePass {
         radiance: &RadianceVolume,
         bricks: &crate::voxel::bricks::Bricks,
         targets: &Targets,
-        anisotropic: bool,
+        gi: &crate::scene::file::GiFile,
         gi_scale: u32,
         accumulate: bool,
         reduced_specular: bool,
-        turned: bool,
         grid: crate::gpu::GridSpec,
     ) -> Result<Self> {
+        let anisotropic = gi.filter == crate::scene::file::Filter::Aniso;
+        let turned = gi.turn_cones;
         if !matches!(gi_scale, 1 | 2 | 4 | 8) {
             return Err(crate::Error::param("gi-scale", format!("must be 1, 2, 4 or 8, got {gi_scale}")));
         }
@@ -171,10 +176,19 @@ impl DeferredShadePass {
                 Binding::new(14, storage, c),
                 Binding::new(15, storage, c),
                 Binding::new(16, storage, c),
+                Binding::new(17, storage, c),
             ],
             2,
         )?;
         let resolve = turned && (gi_scale == 1 || accumulate);
+        // Split among 2×2 pixels where every pixel traces each frame (the resolve then gathers
+        // each quarter of the set from the pixels that traced it).
+        // (A cone drawn alone, `GiFile::only_cone`, is drawn at every pixel.) At a reduced scale
+        // the traced pixels resolve the split set among themselves, in a pass of their own; not
+        // with accumulation, whose still view becomes every pixel's own trace of the whole set
+        // (a resolve over blocks would blur it).
+        let split = turned && gi.split_cones && gi.only_cone.is_none() && (gi_scale == 1 || !accumulate);
+        let split_reduced = split && gi_scale > 1;
         let (lw, lh) = if gi_scale > 1 || resolve {
             (targets.width.div_ceil(gi_scale), targets.height.div_ceil(gi_scale))
         } else {
@@ -187,6 +201,7 @@ impl DeferredShadePass {
         let reduced_specular = reduced_specular && gi_scale > 1 && scene.specular;
         let diffuse_low = low("diffuse gather (reduced)", (lw, lh))?;
         let specular_low = low("specular cone (reduced)", if reduced_specular { (lw, lh) } else { (1, 1) })?;
+        let diffuse_resolved = low("diffuse gather (resolved)", if split_reduced { (lw, lh) } else { (1, 1) })?;
         let (hw, hh) = if accumulate { (targets.width, targets.height) } else { (1, 1) };
         let keep = vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST;
         let image = |name: &str, format, (w, h)| Image::new(ctx, name, ImageDesc::d2(format, w, h, keep));
@@ -223,6 +238,7 @@ impl DeferredShadePass {
             set.write_storage_at(i, 12, history.surface[i].view.raw);
             set.write_storage_at(i, 13, history.surface[1 - i].view.raw);
             set.write_storage_at(i, 14, specular_low.view.raw);
+            set.write_storage_at(i, 17, diffuse_resolved.view.raw);
             set.write_storage_at(i, 15, history.specular[i].view.raw);
             set.write_storage_at(i, 16, history.specular[1 - i].view.raw);
         }
@@ -240,6 +256,7 @@ impl DeferredShadePass {
                 scene.area_lights as u32,
                 scene.specular as u32,
                 resolve as u32,
+                split as u32,
             ];
             Pipeline::compute(
                 ctx,
@@ -254,14 +271,17 @@ impl DeferredShadePass {
         // A pass of its own: in the shading pass, the accumulation's code (even where it does not
         // run) would make lavapipe's shading 2.2x slower (1280x720, scale 4: 777 -> 1766 ms).
         let accumulate_pipeline = accumulate.then(|| pipeline("diffuse accumulation", 2)).transpose()?;
+        let resolve_pipeline = split_reduced.then(|| pipeline("split cones' resolve", 3)).transpose()?;
         Ok(DeferredShadePass {
             ctx: ctx.clone(),
             gbuffer_pipeline,
             shade_pipeline,
             trace_pipeline,
             accumulate_pipeline,
+            resolve_pipeline,
             diffuse_low,
             specular_low,
+            diffuse_resolved,
             set,
             albedo,
             normal,
@@ -288,8 +308,13 @@ impl DeferredShadePass {
     /// last written: the same image (tests/gi_accumulate.rs). Measured (lavapipe, Cornell
     /// 1280x720, scale 8, 64³): a still frame of 225-240 ms (trace 86-90, accumulate 62-65) takes
     /// 77 ms once settled, 64 frames after the last change; a frame that moves pays the whole.
+    ///
+    /// Without accumulation the traced pixels are the same every frame, so one still frame after
+    /// a traced one suffices: the gather images (the split set's partial gathers at full
+    /// resolution, or the reduced trace) already hold what tracing again would write.
     pub fn settled(&self) -> bool {
-        self.accumulate && self.still.get() >= u64::from(self.gi_scale * self.gi_scale)
+        let needed = if self.accumulate { u64::from(self.gi_scale * self.gi_scale) } else { 1 };
+        self.trace_pipeline.is_some() && self.frames.get() > 0 && self.still.get() >= needed
     }
 
     /// This frame's `gi_jitter` uniform: the traced pixel of each block (its centre without
@@ -356,12 +381,14 @@ impl DeferredShadePass {
         let ctx = &self.ctx;
         targets.hdr_for_compute(ctx, cmd);
         let rw = scope::COMPUTE_RW;
-        for low in [&self.diffuse_low, &self.specular_low] {
-            gpu::image_barrier(ctx, cmd, low, vk::ImageLayout::UNDEFINED, vk::ImageLayout::GENERAL, rw, rw);
+        let settled = self.settled();
+        // Settled, the gathers the last traced frame wrote are this frame's: kept, not discarded.
+        let from = if settled { vk::ImageLayout::GENERAL } else { vk::ImageLayout::UNDEFINED };
+        for low in [&self.diffuse_low, &self.specular_low, &self.diffuse_resolved] {
+            gpu::image_barrier(ctx, cmd, low, from, vk::ImageLayout::GENERAL, rw, rw);
         }
         let frames = self.frames.get();
         self.phase.set(self.phase.get() + 1);
-        let settled = self.settled();
         // Settled, the set that wrote the history last ((frames - 1) % 2): its output is this frame's.
         let set = self.set.sets[((frames + u64::from(settled)) % 2) as usize];
         if !settled {
@@ -400,6 +427,14 @@ impl DeferredShadePass {
             let (w, h) = (self.diffuse_low.desc.extent.width, self.diffuse_low.desc.extent.height);
             let local = crate::config::WORKGROUP_2D;
             timer.span(cmd, "trace", || gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]));
+            gpu::memory_barrier(ctx, cmd, rw, rw);
+        }
+        if let Some(resolve) = &self.resolve_pipeline {
+            resolve.bind(cmd, &[scene.set.raw]);
+            resolve.bind_set(cmd, 2, set);
+            let (w, h) = (self.diffuse_low.desc.extent.width, self.diffuse_low.desc.extent.height);
+            let local = crate::config::WORKGROUP_2D;
+            timer.span(cmd, "resolve", || gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]));
             gpu::memory_barrier(ctx, cmd, rw, rw);
         }
         if let Some(accumulate) = &self.accumulate_pipeline {

@@ -11,6 +11,7 @@ pub mod memory;
 pub mod occupancy;
 pub mod overlay;
 pub mod prepass;
+pub mod quality;
 pub mod radiance;
 pub mod shade;
 pub mod shadow;
@@ -40,6 +41,7 @@ use frame::FrameState;
 pub use frame::View;
 use inject::InjectPass;
 use prepass::DepthPrepass;
+pub use quality::Quality;
 use radiance::{Chains, RadianceVolume};
 use shade::ShadePass;
 use shadow::ShadowPass;
@@ -193,9 +195,9 @@ pub struct RenderOptions {
     /// static; the lights, the grid and the GI settings are as they were; no temporal filter
     /// still converging; a camera-independent voxelizer): the viewer's frame is then the
     /// G-buffer and the shading. When only the lights (or the GI settings) changed, the voxels
-    /// are kept and the light's passes run. With accumulation, a still view that has traced
-    /// every pixel since the last change shades from its history without tracing
-    /// (`deferred::DeferredShadePass::settled`). Off, every frame builds the volume again and
+    /// are kept and the light's passes run. A still view that has traced every pixel since the
+    /// last change (with accumulation, gi-scale² frames; else one) shades from what it traced
+    /// without tracing (`deferred::DeferredShadePass::settled`). Off, every frame builds the volume again and
     /// traces (bench, render).
     pub reuse_volume: bool,
 }
@@ -258,6 +260,10 @@ pub struct Renderer {
     pub targets: Targets,
     timer: GpuTimer,
     frame_index: Cell<u64>,
+    /// A share of a whole turn added to every pixel's turn of the cone set
+    /// (`GiFile::turn_cones`; `FrameUniforms::view.w`): frames of several phases averaged are the
+    /// converged frame the flat-wall pattern is measured against (`bench::accuracy::pattern`).
+    pub turn_phase: Cell<f32>,
     /// The grid origin of the last submitted frame, for the temporal blend's reprojection.
     previous_origin: Cell<glam::Vec3>,
     /// This frame's camera (world to clip), and the last submitted frame's, for the screen-space
@@ -312,6 +318,20 @@ fn volume_key(u: &FrameUniforms, camera: bool) -> Vec<u8> {
     k.previous_view_proj = glam::Mat4::ZERO;
     k.gi_jitter = glam::Vec4::ZERO;
     bytemuck::bytes_of(&k).to_vec()
+}
+
+/// The model the deferred trace runs: the scene's, with the cone set split among the traced
+/// pixels only where they lie at most half a voxel apart (`quality::auto_scale`): the split set's
+/// resolve spans 5×5 traced pixels, which then stay within 2.5 voxels, about a cone's own
+/// footprint; farther apart (a `--gi-scale` given beyond it) each traced pixel traces the whole
+/// set. Measured (the diffuse view against the whole set at every pixel): from inside the
+/// Cornell box at 640×360, 64³, scale 2 within reach, split 4.0% of the mean, the whole set
+/// upsampled 11.1% (tests/gi_scale.rs); from outside at 256², 64³, a voxel two pixels, split at
+/// scale 4 spans seven voxels: 11.4%.
+fn traced_model(scene: &Scene, options: &RenderOptions) -> crate::scene::file::GiFile {
+    let voxels = options.resolution.unwrap_or(scene.settings.voxel_resolution);
+    let within = options.gi_scale <= quality::auto_scale(scene, voxels);
+    crate::scene::file::GiFile { split_cones: scene.settings.gi.split_cones && within, ..scene.settings.gi.clone() }
 }
 
 impl Renderer {
@@ -390,11 +410,10 @@ impl Renderer {
                     &radiance,
                     &voxels.bricks,
                     &targets,
-                    aniso,
+                    &traced_model(&scene, &options),
                     s,
                     acc,
                     options.reduced_specular,
-                    scene.settings.gi.turn_cones,
                     grid_spec,
                 )?)
             }
@@ -444,6 +463,7 @@ impl Renderer {
             targets,
             timer,
             frame_index: Cell::new(0),
+            turn_phase: Cell::new(0.0),
             previous_origin: Cell::new(origin),
             view_proj: Cell::new(glam::Mat4::IDENTITY),
             previous_view_proj: Cell::new(None),
@@ -474,6 +494,7 @@ impl Renderer {
         // Whether the camera moved since the last frame: the accumulated specular cone, which
         // depends on where the camera looks from, keeps no history then.
         u.gi_jitter.w = (self.previous_view_proj.get() != Some(u.view_proj)) as u32 as f32;
+        u.view.w = self.turn_phase.get();
         self.scene_gpu.uniforms.set_pod(&u);
         self.voxelizer.set_camera(u.view_proj);
         self.view_proj.set(u.view_proj);
@@ -664,11 +685,10 @@ impl Renderer {
                 &self.radiance,
                 &self.voxels.bricks,
                 &self.targets,
-                self.scene.settings.gi.filter == Filter::Aniso,
+                &traced_model(&self.scene, &self.options),
                 self.options.gi_scale,
                 self.options.gi_accumulate,
                 self.options.reduced_specular,
-                self.scene.settings.gi.turn_cones,
                 self.voxels.grid.spec(),
             )?),
             Tracing::Forward => None,

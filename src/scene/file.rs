@@ -76,6 +76,12 @@ pub struct GiFile {
     /// surface; at a reduced GI scale the upsampling mixes the turns, and forward shading leaves
     /// each pixel its own.
     pub turn_cones: bool,
+    /// Split the diffuse cone set among each 2×2 block of pixels (with `turn_cones`, in deferred
+    /// shading at full resolution): each pixel traces a quarter of the cones, and the resolve
+    /// takes, for each quarter, the mean of the 3×3 neighbours on the same surface that traced
+    /// it, so every pixel still gathers the whole set, turned nine ways, at a quarter of the
+    /// trace (interleaved sampling, Keller & Heidrich 2001; shade/deferred.comp).
+    pub split_cones: bool,
     /// A diagnostic, not a model: the surfaces gather cone `k` of their set alone, with weight
     /// one, so the image's indirect light is that cone's radiance (`vct bench --accuracy
     /// --per-cone`). Not read from scene files.
@@ -237,6 +243,7 @@ impl GiFile {
             area_lights: false,
             injection: Injection::Texels,
             turn_cones: false,
+            split_cones: false,
             only_cone: None,
         }
     }
@@ -246,7 +253,8 @@ impl Default for GiFile {
     /// The model the accuracy study chose (docs/design/cones.md): directional chains, levels
     /// matched to the cone's footprint, no filter reaching back into the receiving surface, light
     /// hidden where it faces away, sixteen narrow cones, injection from the voxels (measured
-    /// together with the sixteen cones), and the cone set turned by pixel.
+    /// together with the sixteen cones), and the cone set turned by pixel and split among 2×2
+    /// pixels.
     fn default() -> Self {
         GiFile {
             steps: 256,
@@ -259,6 +267,7 @@ impl Default for GiFile {
             facing: true,
             area_lights: true,
             turn_cones: true,
+            split_cones: true,
             ..GiFile::thesis()
         }
     }

@@ -17,16 +17,18 @@ use serde::{Deserialize, Serialize};
 
 use super::reference_cached;
 use crate::error::Result;
-use crate::gpu::{timer::median, Context};
+use crate::gpu::{timer::median, Context, Timing};
 use crate::reference::metrics;
 use crate::reference::pathtrace::{PathTracer, PrimaryHit};
-use crate::render::{RenderOptions, Renderer, View};
+use crate::render::{Quality, RenderOptions, Renderer, View};
 use crate::scene::file::{ConeSet, Filter, GiFile, Injection, LevelRule};
 use crate::scene::Scene;
 use crate::voxel::{Coverage, VoxelizeMethod};
 
+pub mod pattern;
 pub mod per_cone;
 mod report;
+pub mod trace_cost;
 pub use report::{summary, write};
 
 const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
@@ -219,6 +221,10 @@ pub fn region_log_error_text(regions: &[RegionRow]) -> String {
     region_log_error(regions).map_or("–".to_string(), |e| format!("{e:.3}"))
 }
 
+fn one() -> u32 {
+    1
+}
+
 /// One variant on one scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct AccuracyRow {
@@ -227,6 +233,12 @@ pub struct AccuracyRow {
     pub resolution: u32,
     pub bounces: u32,
     pub frame_ms: f64,
+    /// Each pass's median GPU time (ms) over the frames timed.
+    #[serde(default)]
+    pub passes: Vec<Timing>,
+    /// The diffuse cones were traced at one pixel in this squared (`RenderOptions::gi_scale`).
+    #[serde(default = "one")]
+    pub gi_scale: u32,
     /// The volume's memory (voxel textures, radiance, lists), MiB.
     pub memory_mib: f64,
     pub flip: f32,
@@ -246,6 +258,10 @@ pub struct AccuracyRow {
     /// The same variant on other placements of the lattice (`measure_lattices`).
     #[serde(default)]
     pub lattices: Option<LatticeSpread>,
+    /// The flat-wall pattern: the frame's RMS departure from the converged frame of the same
+    /// settings over the regions, a share of their mean ([`pattern::measure`]; where measured).
+    #[serde(default)]
+    pub pattern: Option<f32>,
     #[serde(skip)]
     pub flip_map: Vec<u8>,
     /// The reference's indirect light beside the renderer's (RGB8, twice as wide), tone-mapped
@@ -330,17 +346,29 @@ pub struct Variant {
     /// The lattice moved by this many voxels (a clipmap's: of its coarsest level;
     /// `RenderOptions::lattice`).
     pub lattice: Option<Vec3>,
+    /// The diffuse cones traced at one pixel in this squared (`RenderOptions::gi_scale`; None: 1,
+    /// or the preset's).
+    pub gi_scale: Option<u32>,
+    /// The quality preset whose GI scale the frame takes for the scene and grid, as `vct render`
+    /// does (`render::Quality::gi_scale`; None: `gi_scale`).
+    pub quality: Option<Quality>,
 }
 
 impl Variant {
     /// The GI model `gi`, named `name`, on the scene's fitted grid.
     pub fn model(name: &str, gi: GiFile) -> Self {
-        Variant { name: name.into(), gi, warp: None, clipmap: None, lattice: None }
+        Variant { name: name.into(), gi, warp: None, clipmap: None, lattice: None, gi_scale: None, quality: None }
     }
 
-    /// The scene's own model on its own grid.
+    /// The scene's own model on its own grid, as `vct render` renders it by default.
     pub fn default_of(gi: &GiFile) -> Self {
-        Self::model("default", gi.clone())
+        Variant { quality: Some(Quality::Default), ..Self::model("default", gi.clone()) }
+    }
+
+    /// The scene's own model as quality preset `q` sets it (`render::Quality`), named
+    /// "quality NAME".
+    pub fn preset(q: Quality, gi: &GiFile) -> Self {
+        Variant { quality: Some(q), ..Self::model(&format!("quality {}", q.name()), q.gi(gi)) }
     }
 
     /// The scene's own model with the voxels warped by the thesis' function (Freed 2018 §4.6.1)
@@ -365,6 +393,10 @@ impl Variant {
             warp: self.warp,
             clipmap: self.clipmap.map(|(levels, _)| crate::render::ClipOptions { levels, extent: None }),
             lattice: self.lattice,
+            gi_scale: match self.quality {
+                Some(q) => q.gi_scale(&scene, resolution),
+                None => self.gi_scale.unwrap_or(1),
+            },
             ..Default::default()
         };
         if self.warp.is_some() || self.clipmap.is_some() {
@@ -399,20 +431,23 @@ fn mean_lum(img: &[Vec3]) -> f32 {
     img.iter().map(|p| lum(*p)).sum::<f32>() / img.len().max(1) as f32
 }
 
-/// Renders `scene` with `options`: median frame GPU ms over `frames` after one warm-up
-/// ([`super::timed_frames`]), the last frame's linear radiance and RGB8, and the volume's memory
-/// (bytes).
-pub fn render_timed(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    options: RenderOptions,
-    frames: u32,
-) -> Result<(f64, Vec<Vec3>, Vec<u8>, u64)> {
+/// A frame [`render_timed`] rendered.
+pub struct Timed {
+    /// Each pass's median GPU ms over the frames timed.
+    pub passes: Vec<Timing>,
+    /// The last frame's linear radiance and RGB8.
+    pub linear: Vec<Vec3>,
+    pub rgb: Vec<u8>,
+    /// The volume's memory (bytes).
+    pub memory: u64,
+}
+
+/// Renders `scene` with `options`: `frames` timed after one warm-up ([`super::timed_frames`]).
+pub fn render_timed(ctx: &Arc<Context>, scene: &Scene, options: RenderOptions, frames: u32) -> Result<Timed> {
     let r = Renderer::new(ctx, scene.clone(), options)?;
     let runs = super::timed_frames(&r, 1, frames)?;
-    let total = median(&runs).iter().find(|t| t.pass == "total").map(|t| t.ms).unwrap_or(0.0);
     let f = r.read_frame()?;
-    Ok((total, f.linear(), f.rgb8(), r.memory().bytes))
+    Ok(Timed { passes: median(&runs), linear: f.linear(), rgb: f.rgb8(), memory: r.memory().bytes })
 }
 
 /// The voxelizer the harness renders with: the rasterized path (its coverage is exact on these
@@ -431,7 +466,9 @@ pub fn measure(
     frames: u32,
 ) -> Result<AccuracyRow> {
     let (scene, options) = variant.setup(&j.scene, resolution);
-    let (ms, full, rgb, memory) = render_timed(ctx, &scene, options, frames)?;
+    let gi_scale = options.gi_scale;
+    let Timed { passes, linear: full, rgb, memory } = render_timed(ctx, &scene, options, frames)?;
+    let ms = passes.iter().find(|t| t.pass == "total").map_or(0.0, |t| t.ms);
     let (w, h) = (scene.camera.width, scene.camera.height);
     let (flip, flip_map, per_pixel) = metrics::flip_values(&j.full_rgb, &rgb, w, h);
     let mut by_distance = [(0.0f32, 0usize); 3];
@@ -477,6 +514,8 @@ pub fn measure(
         resolution,
         bounces: variant.gi.bounces,
         frame_ms: ms,
+        passes,
+        gi_scale,
         memory_mib: memory as f64 / (1u64 << 20) as f64,
         flip,
         flip_direct_only,
@@ -486,6 +525,7 @@ pub fn measure(
         regions,
         reference_noise: j.noise,
         lattices: None,
+        pattern: None,
         flip_map,
         indirect_pair,
         width: w,
@@ -502,8 +542,8 @@ pub fn direct_frame(ctx: &Arc<Context>, j: &Judged, resolution: u32) -> Result<(
         gi: false,
         ..Default::default()
     };
-    let (_, lin, rgb, _) = render_timed(ctx, &j.scene, options, 1)?;
-    Ok((lin, rgb))
+    let t = render_timed(ctx, &j.scene, options, 1)?;
+    Ok((t.linear, t.rgb))
 }
 
 /// How much a slow pan changes the image where nothing in the scene moves (a seam at a clipmap
@@ -588,6 +628,9 @@ pub fn study_variants(default: &GiFile) -> Vec<Variant> {
     out.push(v("default, bias 3", GiFile { bias: 3.0, ..d() }));
     let turn = if default.turn_cones { "default, cones fixed" } else { "default, cones turned by pixel" };
     out.push(v(turn, GiFile { turn_cones: !default.turn_cones, ..d() }));
+    out.push(v("default, cones fib8", GiFile { cones: ConeSet::Fib8, ..d() }));
+    out.push(Variant { gi_scale: Some(4), ..v("default, gi scale 4", d()) });
+    out.extend(Quality::ALL.into_iter().filter(|&q| q != Quality::Default).map(|q| Variant::preset(q, default)));
     for injection in [Injection::Voxels, Injection::Texels] {
         if injection != default.injection {
             out.push(v(&format!("default, injection from {}", injection.name()), GiFile { injection, ..d() }));

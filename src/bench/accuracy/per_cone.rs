@@ -100,7 +100,7 @@ pub fn measure(
     for (k, cone) in cones.iter().enumerate() {
         let alone = Variant::model(&format!("cone {k}"), GiFile { only_cone: Some(k as u32), ..gi.clone() });
         let (scene, options) = alone.setup(&j.scene, resolution);
-        let (_, full, _, _) = render_timed(ctx, &scene, options, 1)?;
+        let full = render_timed(ctx, &scene, options, 1)?.linear;
         for (r, region) in picked.iter().enumerate() {
             let sum: Vec3 = region.iter().map(|&i| full[i] - direct.0[i]).sum();
             vct[r][k] = sum / region.len().max(1) as f32 * cone.dir_weight[3];

@@ -23,6 +23,7 @@ use super::stability;
 use super::{BenchOptions, Results};
 use crate::error::{Error, Result};
 use crate::gpu::Context;
+use crate::render::Quality;
 use crate::scene::Scene;
 
 /// Where and with what a run was measured.
@@ -115,6 +116,40 @@ pub struct Data {
     pub accuracy: Vec<AccuracyRow>,
     pub stability: Vec<Regime>,
     pub hostile: Vec<HostileRow>,
+    /// This tree against the landed main, side by side (`scripts/speed-vs-main.sh`, imported with
+    /// `--speed`).
+    pub speed: Vec<SpeedRun>,
+}
+
+/// One `vct render` of `scripts/speed-vs-main.sh`: a case, the binary (`base`: the landed main;
+/// `new`: this tree) and the round, with the run's wall clock and its per-pass median GPU times.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SpeedRun {
+    pub case: String,
+    pub binary: String,
+    pub round: u32,
+    pub frames: u32,
+    pub run_wall_ms: f64,
+    pub timings: SpeedTimings,
+}
+
+/// The part of `vct render --timings` a speed run keeps.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SpeedTimings {
+    pub passes: Vec<PassMs>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PassMs {
+    pub pass: String,
+    pub ms: f64,
+}
+
+impl SpeedRun {
+    /// The median GPU time of `pass` over the run's frames (0 where it has none).
+    pub fn pass_ms(&self, pass: &str) -> f64 {
+        self.timings.passes.iter().find(|p| p.pass == pass).map_or(0.0, |p| p.ms)
+    }
 }
 
 fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Option<T>> {
@@ -136,33 +171,61 @@ impl Data {
             accuracy: read_json(&dir.join("accuracy/accuracy.json"))?.unwrap_or_default(),
             stability: read_json(&dir.join("stability/stability.json"))?.unwrap_or_default(),
             hostile: read_json(&dir.join("stability/hostile.json"))?.unwrap_or_default(),
+            speed: read_json(&dir.join("speed/speed.json"))?.unwrap_or_default(),
         })
     }
 
     pub fn is_empty(&self) -> bool {
-        self.sweep.is_none() && self.accuracy.is_empty() && self.stability.is_empty() && self.hostile.is_empty()
+        self.sweep.is_none()
+            && self.accuracy.is_empty()
+            && self.stability.is_empty()
+            && self.hostile.is_empty()
+            && self.speed.is_empty()
     }
 }
 
 /// The indirect light of each scene's own model against its path-traced reference, at each
-/// resolution: the default frame's accuracy figures.
+/// resolution: the default frame's accuracy figures. At `shown` (the scenes' own grid) also the
+/// other quality presets (`render::Quality`, rows "quality NAME"), for all three the flat-wall
+/// pattern (`accuracy::pattern`), and on the first scene the trace's breakdown
+/// (`accuracy::trace_cost`, rows "trace: …").
+#[allow(clippy::too_many_arguments)] // the suite's knobs
 pub fn measure_light(
     ctx: &Arc<Context>,
     scenes: Vec<(String, Scene)>,
     resolutions: &[u32],
+    shown: u32,
     spp: u32,
     frames: u32,
     cache: &Path,
     progress: &dyn Fn(&str),
 ) -> Result<Vec<AccuracyRow>> {
     let mut rows = Vec::new();
-    for (name, scene) in scenes {
+    for (k, (name, scene)) in scenes.into_iter().enumerate() {
         let gi = scene.settings.gi.clone();
         let judged = Judged::new(&name, scene, gi.bounces, spp, cache, progress)?;
         for &res in resolutions {
             progress(&format!("indirect light: {name} at {res}³"));
             let direct = accuracy::direct_frame(ctx, &judged, res)?;
-            rows.push(accuracy::measure(ctx, &judged, &direct, &Variant::default_of(&gi), res, frames)?);
+            let mut variants = vec![Variant::default_of(&gi)];
+            if res == shown {
+                variants.extend(
+                    Quality::ALL.into_iter().filter(|&q| q != Quality::Default).map(|q| Variant::preset(q, &gi)),
+                );
+            }
+            let patterned = variants.len();
+            if res == shown && k == 0 {
+                variants.extend(accuracy::trace_cost::variants(&gi).into_iter().map(|(v, _)| v));
+            }
+            for (i, v) in variants.iter().enumerate() {
+                progress(&format!("indirect light: {name} at {res}³, {}", v.name));
+                let mut row = accuracy::measure(ctx, &judged, &direct, v, res, frames)?;
+                if res == shown && i < patterned {
+                    progress(&format!("indirect light: {name} at {res}³, {}: the flat-wall pattern", v.name));
+                    row.pattern = Some(accuracy::pattern::measure(ctx, &judged, v, res)?);
+                }
+                rows.push(row);
+            }
         }
     }
     Ok(rows)
@@ -198,15 +261,15 @@ pub fn run(ctx: &Arc<Context>, dir: &Path, suite: Suite, progress: &dyn Fn(&str)
     let mut light_scenes = vec![("cornell".to_string(), cornell), ("cornell-directional".to_string(), directional)];
     light_scenes.extend(given);
     let (resolutions, spp, frames) = if quick { (vec![32], 16, 1) } else { (vec![64, 128, 256], 2048, 3) };
-    let light = measure_light(ctx, light_scenes, &resolutions, spp, frames, &suite.cache, progress)?;
     // The report shows the images (FLIP map, indirect light beside the reference's) of the
-    // scenes' own grid, the middle resolution; the others' are not kept.
+    // scenes' own grid, the middle resolution, and the presets there; the others' are not kept.
     let shown = resolutions[resolutions.len() / 2];
+    let light = measure_light(ctx, light_scenes, &resolutions, shown, spp, frames, &suite.cache, progress)?;
     let imaged: Vec<AccuracyRow> = light
         .iter()
         .cloned()
         .map(|mut r| {
-            if r.resolution != shown {
+            if r.resolution != shown || r.variant != "default" {
                 r.flip_map.clear();
             }
             r
@@ -245,6 +308,20 @@ fn keep_svg_charts(dir: &Path) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Copies the runs of `scripts/speed-vs-main.sh` (its JSON, `from`) into `dir/data/speed/`, the
+/// report's speed section. Returns the file written.
+pub fn import_speed(from: &Path, dir: &Path) -> Result<PathBuf> {
+    let runs: Vec<SpeedRun> = read_json(from)?.ok_or_else(|| Error::input(from, "no such file"))?;
+    if !runs.iter().any(|r| r.binary == "base") || !runs.iter().any(|r| r.binary == "new") {
+        return Err(Error::input(from, "needs runs of both binaries, base and new (scripts/speed-vs-main.sh)"));
+    }
+    let dst = dir.join("data/speed/speed.json");
+    std::fs::create_dir_all(dst.parent().expect("a file in data/speed"))
+        .map_err(|source| Error::Io { path: dst.clone(), source })?;
+    write_json(&dst, &runs)?;
+    Ok(dst)
 }
 
 /// Copies a GPU run's data (the folder `scripts/device-bench.sh` returns, or one laid out as

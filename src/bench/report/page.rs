@@ -9,8 +9,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::{keep_svg_charts, Data, Stamp};
-use crate::bench::accuracy::AccuracyRow;
+use super::{keep_svg_charts, Data, SpeedRun, Stamp};
+use crate::bench::accuracy::{trace_cost, AccuracyRow};
 use crate::bench::charts::{self, Regime};
 use crate::bench::{gi_scale, hostile, points, Results, Row};
 use crate::error::{Error, Result};
@@ -26,8 +26,8 @@ pub struct Section {
 }
 
 /// The sections every report has, by id: the page test checks each is there and filled.
-pub const SECTIONS: [&str; 9] =
-    ["voxelizers", "passes", "tess-raster", "memory", "points", "gi-scale", "light", "stability", "hostile"];
+pub const SECTIONS: [&str; 10] =
+    ["voxelizers", "passes", "tess-raster", "memory", "points", "gi-scale", "light", "trace", "stability", "hostile"];
 
 /// The voxelizer that the storage modes ran with (the default one); `None` where the run
 /// compared no storage modes.
@@ -176,7 +176,102 @@ fn region_range(r: &AccuracyRow) -> String {
     }
 }
 
-fn light(rows: &[AccuracyRow]) -> String {
+/// This tree against the landed main (`scripts/speed-vs-main.sh`): per case, each binary's
+/// median over its rounds of the frame's median GPU time, their ratio, and for this tree the
+/// cone trace's and the mip filter's shares of its frame; the runs' wall clocks beside (they
+/// include starting up and llvmpipe compiling each pipeline at its first dispatch).
+fn speed(runs: &[SpeedRun]) -> String {
+    fn median(mut v: Vec<f64>) -> f64 {
+        v.sort_by(f64::total_cmp);
+        if v.is_empty() {
+            0.0
+        } else {
+            v[v.len() / 2]
+        }
+    }
+    let mut cases: Vec<&str> = Vec::new();
+    for r in runs {
+        if !cases.contains(&r.case.as_str()) {
+            cases.push(&r.case);
+        }
+    }
+    let of = |case: &str, binary: &str, f: &dyn Fn(&SpeedRun) -> f64| {
+        median(runs.iter().filter(|r| r.case == case && r.binary == binary).map(f).collect())
+    };
+    let rounds = runs.iter().map(|r| r.round).max().unwrap_or(0);
+    let mut s = format!(
+        "This tree (`new`) against the landed main (`main`), both built on this machine and run alternately, \
+         {rounds} rounds a case (`scripts/speed-vs-main.sh`): the median GPU time of a frame (over each run's \
+         frames; the first frame, which also pays for llvmpipe compiling each pipeline, counts only in the \
+         run's wall clock), and the ratio main / new.\n\n"
+    );
+    s += &table(
+        &[
+            "case",
+            "main frame ms",
+            "new frame ms",
+            "main / new",
+            "new: trace",
+            "new: mip filter",
+            "main run s",
+            "new run s",
+        ],
+        cases.iter().map(|c| {
+            let (b, n) = (of(c, "base", &|r| r.pass_ms("total")), of(c, "new", &|r| r.pass_ms("total")));
+            let share = |pass: &str| format!("{:.1}%", 100.0 * of(c, "new", &|r| r.pass_ms(pass)) / n.max(1e-9));
+            vec![
+                c.to_string(),
+                format!("{b:.1}"),
+                format!("{n:.1}"),
+                format!("{:.2}×", b / n.max(1e-9)),
+                share("trace"),
+                share("filter"),
+                format!("{:.1}", of(c, "base", &|r| r.run_wall_ms) / 1e3),
+                format!("{:.1}", of(c, "new", &|r| r.run_wall_ms) / 1e3),
+            ]
+        }),
+    );
+    s
+}
+
+/// The quality presets where the run measured them (`render::Quality`: rows "default" and
+/// "quality NAME" at the grid that has both), fastest first, with the flat-wall pattern.
+fn presets(all: &[AccuracyRow]) -> String {
+    let mut rows: Vec<&AccuracyRow> = all
+        .iter()
+        .filter(|r| r.pattern.is_some() && (r.variant == "default" || r.variant.starts_with("quality ")))
+        .collect();
+    if rows.is_empty() {
+        return String::new();
+    }
+    rows.sort_by(|a, b| a.scene.cmp(&b.scene).then(a.frame_ms.total_cmp(&b.frame_ms)));
+    let mut s = String::from(
+        "\nThe quality presets (`--quality`), each a point of the chart below: the frame's GPU time beside its \
+         accuracy, and the flat-wall pattern, the frame's RMS departure on the flat regions from the converged \
+         frame of the same settings (16 frames with the cone set turned further, averaged), a share of the \
+         regions' mean light. `high` traces the whole set at every pixel, four times the cones of `default`: \
+         the scale the others are read against.\n\n",
+    );
+    s += &table(
+        &["scene", "N", "preset", "frame ms", "FLIP", "regions' indirect ratio", "flat-wall pattern"],
+        rows.iter().map(|r| {
+            vec![
+                r.scene.clone(),
+                r.resolution.to_string(),
+                r.variant.trim_start_matches("quality ").to_string(),
+                format!("{:.1}", r.frame_ms),
+                format!("{:.4}", r.flip),
+                region_range(r),
+                r.pattern.map_or("–".into(), |p| format!("{:.2}%", 100.0 * p)),
+            ]
+        }),
+    );
+    s
+}
+
+fn light(all: &[AccuracyRow]) -> String {
+    let rows: Vec<AccuracyRow> = all.iter().filter(|r| r.variant == "default").cloned().collect();
+    let rows = &rows[..];
     let mut s = String::from(
         "The default model's frame against a path-traced reference of the same scene and bounces: LDR-FLIP \
          (lower is better), FLIP of the direct light alone for scale, the mean radiance over the reference's, \
@@ -244,7 +339,7 @@ fn light(rows: &[AccuracyRow]) -> String {
             v
         }),
     );
-    s
+    s + &presets(all)
 }
 
 /// The images the indirect-light run kept (`indirect-*.png`: the reference's indirect light
@@ -353,9 +448,21 @@ pub fn sections(dir: &Path, sub: &str, data: &Data) -> Result<Vec<Section>> {
     if !data.accuracy.is_empty() {
         let d = root.join("accuracy");
         std::fs::create_dir_all(&d).map_err(|source| Error::Io { path: d.clone(), source })?;
-        charts::draw_accuracy(&d, &data.accuracy, charts::Cost::Time)?;
+        // The chart: each scene's default at each grid and the presets, not the trace's parts.
+        let charted: Vec<AccuracyRow> =
+            data.accuracy.iter().filter(|r| !r.variant.starts_with("trace: ")).cloned().collect();
+        charts::draw_accuracy(&d, &charted, charts::Cost::Time)?;
         let md = light(&data.accuracy) + &light_images(dir, &d)?;
         push("light", "Does the indirect light agree with the path tracer?", md, vec![svg_of(&d, "accuracy")]);
+        let default = crate::scene::file::GiFile::default();
+        let breakdown = trace_cost::table(&data.accuracy, &default);
+        if !breakdown.is_empty() {
+            trace_cost::draw(&d, &data.accuracy, &default)?;
+            push("trace", "Where does a pixel's time go?", breakdown, vec![svg_of(&d, "trace")]);
+        }
+    }
+    if !data.speed.is_empty() {
+        push("speed", "Is it faster than the landed main?", speed(&data.speed), vec![]);
     }
     if !data.stability.is_empty() {
         let d = root.join("stability");

@@ -85,9 +85,19 @@ pub fn accuracy(
                 progress(&format!("{name} {res}³ {}", v.name));
                 let mut row = accuracy::measure(ctx, &judged, &direct, v, res, frames)
                     .with_context(|| format!("measuring {name} {} at {res}³", v.name))?;
+                if args.pattern {
+                    progress(&format!("{name} {res}³ {}: the flat-wall pattern", v.name));
+                    row.pattern = Some(
+                        accuracy::pattern::measure(ctx, &judged, v, res)
+                            .with_context(|| format!("measuring {name} {}'s pattern at {res}³", v.name))?,
+                    );
+                }
                 let regions = accuracy::region_log_error_text(&row.regions);
+                let judged_ratios = row.regions.iter().filter(|g| g.judged).map(|g| g.ratio);
+                let (lo, hi) = judged_ratios.fold((f32::MAX, f32::MIN), |(a, b), r| (a.min(r), b.max(r)));
+                let pattern = row.pattern.map_or(String::new(), |p| format!("  pattern {:.2}%", 100.0 * p));
                 println!(
-                    "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}  regions |ln| {regions}",
+                    "{:<20} {:<34} {:>4}³ {:>9.1} ms {:>7.1} MiB  FLIP {:.4} (direct only {:.4})  mean {:.3}  regions |ln| {regions} ({lo:.2}..{hi:.2}){pattern}",
                     name, v.name, res, row.frame_ms, row.memory_mib, row.flip, row.flip_direct_only, row.mean_ratio
                 );
                 if let (Some(k), None) = (args.lattices, v.warp) {

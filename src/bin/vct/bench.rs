@@ -12,12 +12,17 @@ use crate::bench_args::BenchArgs;
 use crate::common::*;
 
 /// `--report DIR`: the standard suite and the report from its data (or, with --rewrite, the
-/// report from the data already there); --gpu imports a GPU run first.
+/// report from the data already there); --gpu imports a GPU run first, --speed the timings against
+/// the landed main.
 fn report(dir: &Path, args: &BenchArgs, scenes: Vec<(String, Scene)>) -> Result<()> {
     if let Some(run) = &args.gpu_run {
         for f in vct::bench::report::import_gpu(run, dir).context("importing the GPU run")? {
             println!("imported {}", f.display());
         }
+    }
+    if let Some(runs) = &args.speed {
+        let f = vct::bench::report::import_speed(runs, dir).context("importing the speed runs")?;
+        println!("imported {}", f.display());
     }
     let files = if args.rewrite {
         vct::bench::report::page::write(dir).context("writing the report")?

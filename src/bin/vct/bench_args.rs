@@ -23,6 +23,10 @@ pub struct BenchArgs {
     /// DIR/gpu/, its own section of the report.
     #[arg(long = "gpu", value_name = "RUN", requires = "report")]
     pub gpu_run: Option<PathBuf>,
+    /// With --report: import the side-by-side timings of this tree against the landed main
+    /// (the JSON scripts/speed-vs-main.sh writes) into DIR/data/speed/, the report's speed section.
+    #[arg(long, value_name = "RUNS", requires = "report")]
+    pub speed: Option<PathBuf>,
     /// Extra scenes (.toml, .obj, .gltf or .glb) besides the embedded Cornell box.
     pub scenes: Vec<PathBuf>,
     /// A short run for CI: Cornell at 32³ and 64³, 128×128, few frames, a 16-spp reference.
@@ -101,6 +105,10 @@ pub struct BenchArgs {
     /// through the same cells of the hemisphere (per-cone.csv; docs/design/cones.md).
     #[arg(long, requires = "accuracy", conflicts_with_all = ["layouts", "study"], hide = true)]
     pub per_cone: bool,
+    /// With --accuracy: also measure each variant's flat-wall pattern, its frame's RMS departure
+    /// from the mean of 16 frames with the cone set turned further (a share of the regions' mean).
+    #[arg(long, requires = "accuracy", hide = true)]
+    pub pattern: bool,
     /// With --study: only the variants whose name contains this text.
     #[arg(long, requires = "study", value_name = "TEXT", hide = true)]
     pub only: Option<String>,

@@ -76,6 +76,12 @@ pub struct SceneArgs {
     /// of the map).
     #[arg(long, value_name = "TEXELS", default_value_t = vct::config::INJECT_TEXELS_PER_VOXEL, value_parser = inject_texels, hide = true)]
     pub inject_texels: f32,
+    /// Quality preset, a point of the report's speed-against-accuracy chart: high (every pixel
+    /// traces the whole cone set), default (the set split among 2×2 traced pixels, a quarter of
+    /// the trace; `render` traces at most half a voxel apart and upsamples), draft (`render`: the
+    /// traced pixels twice as far apart). Flags given beside it override it.
+    #[arg(long, default_value = "default")]
+    pub quality: vct::render::Quality,
     /// Trace the diffuse cones at one pixel in 1, 4, 16 or 64 (1|2|4|8), upsampled edge-aware on the
     /// G-buffer's depth and normal (deferred tracing; the specular cone too, see --gi-specular).
     /// Default: 1 for `render` (a headless frame affords every pixel), 8 for `view`.
@@ -117,6 +123,10 @@ pub struct SceneArgs {
     /// over 3×3 pixels (on|off; overrides gi.turn_cones, on by default).
     #[arg(long, value_enum, hide = true)]
     pub turn_cones: Option<OnOff>,
+    /// Split the turned cone set among each 2×2 block of pixels, each tracing a quarter of it,
+    /// resolved per quarter over 3×3 pixels (on|off; overrides gi.split_cones).
+    #[arg(long, value_enum, hide = true)]
+    pub split_cones: Option<OnOff>,
     /// How injection finds the lit voxels: texels (each shadow-map texel finds its voxel; Freed
     /// 2018 Algorithm 2) or voxels (each occupied voxel first met from the light looks itself up
     /// in the shadow maps: the cost follows the voxels; a warped grid injects from the texels)
@@ -241,6 +251,7 @@ impl SceneArgs {
         if let Some(t) = self.temporal {
             scene.settings.gi.temporal = t;
         }
+        scene.settings.gi = self.quality.gi(&scene.settings.gi);
         let gi = &mut scene.settings.gi;
         if let Some(f) = self.filter {
             gi.filter = match f {
@@ -256,6 +267,9 @@ impl SceneArgs {
         }
         if let Some(t) = self.turn_cones {
             gi.turn_cones = t == OnOff::On;
+        }
+        if let Some(t) = self.split_cones {
+            gi.split_cones = t == OnOff::On;
         }
         if let Some(i) = self.injection {
             gi.injection = i;

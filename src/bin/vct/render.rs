@@ -95,7 +95,14 @@ pub fn render(args: RenderArgs) -> Result<()> {
         view: args.view,
         gi: !args.no_gi,
         tracing,
-        gi_scale: args.scene.gi_scale.unwrap_or(1),
+        gi_scale: match args.scene.gi_scale {
+            Some(s) => s,
+            None => {
+                let dims = args.scene.method.dims.map(|d| d.max_element());
+                let voxels = dims.or(args.scene.method.res()?).unwrap_or(scene.settings.voxel_resolution);
+                args.scene.quality.gi_scale(&scene, voxels)
+            }
+        },
         gi_accumulate: args.scene.gi_accumulate == Some(OnOff::On),
         reuse_volume: args.reuse_volume == OnOff::On,
         ..args.scene.render_options()?
