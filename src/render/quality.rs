@@ -8,7 +8,10 @@
 //! - `default`: the set split among each 2×2 block of traced pixels (`GiFile::split_cones`): a
 //!   quarter of the trace, each gather resolved per quarter from its 5×5 neighbours; and the
 //!   traced pixels as far apart as the voxels allow ([`auto_scale`]), upsampled edge-aware.
-//! - `draft`: as `default`, the traced pixels twice as far apart.
+//! - `draft`: as `default`, the traced pixels twice as far apart; where they then lie more than
+//!   half a voxel apart each traced pixel traces the whole set (`render::traced_model`), so on a
+//!   view whose voxels are about a pixel wide (the Cornell box at 256², 128³) it costs what
+//!   `default` costs, at a worse FLIP (the report's light section).
 //!
 //! Why the traced pixels may lie half a voxel apart: the indirect light is read from the voxels,
 //! and what changes within a voxel is the trilinear filter's blend, which the upsampling's

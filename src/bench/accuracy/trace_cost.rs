@@ -13,75 +13,67 @@ use crate::bench::charts::{ensure_font, DrawResult};
 use crate::error::{Error, Result};
 use crate::scene::file::{Filter, GiFile};
 
-/// The variants that take the default's trace apart, each with the cones a traced pixel traces
-/// over the cones a shaded pixel gets (the share of the whole set each pixel pays for).
-pub fn variants(default: &GiFile) -> Vec<(Variant, f64)> {
+/// The variants that take the default's trace apart.
+pub fn variants(default: &GiFile) -> Vec<Variant> {
     let d = || default.clone();
     let v = |name: &str, gi: GiFile| Variant::model(&format!("trace: {name}"), gi);
     vec![
-        (v("default, fixed cones (no turn, no resolve)", GiFile { turn_cones: false, split_cones: false, ..d() }), 1.0),
-        (v("default, isotropic chain (one fetch a step, not three)", GiFile { filter: Filter::Iso, ..d() }), 0.25),
-        (v("default, no facing test (no moment fetch a step)", GiFile { facing: false, ..d() }), 0.25),
-        (v("default, a whole texel a step (half the samples)", GiFile { step: 2.0 * default.step, ..d() }), 0.25),
-        (v("default, no self clamp (coarser levels near the surface)", GiFile { self_clamp: false, ..d() }), 0.25),
+        v("default, fixed cones (no turn, no resolve)", GiFile { turn_cones: false, split_cones: false, ..d() }),
+        v("default, isotropic chain (one fetch a step, not three)", GiFile { filter: Filter::Iso, ..d() }),
+        v("default, no facing test (no moment fetch a step)", GiFile { facing: false, ..d() }),
+        v("default, a whole texel a step (half the samples)", GiFile { step: 2.0 * default.step, ..d() }),
+        v("default, no self clamp (coarser levels near the surface)", GiFile { self_clamp: false, ..d() }),
     ]
 }
 
-/// The share of the whole cone set a shaded pixel pays for, by the row's variant: the trace rows'
-/// own, and the presets': `quality high` every cone at every pixel; the default and `draft` a
-/// quarter of the set at one pixel in the row's GI scale squared.
-pub fn share_of(row: &AccuracyRow, default: &GiFile) -> Option<f64> {
-    if let Some((_, s)) = variants(default).into_iter().find(|(v, _)| v.name == row.variant) {
-        return Some(s);
-    }
-    let split = match row.variant.as_str() {
-        "quality high" => 1.0,
-        "default" | "quality draft" => 0.25,
-        _ => return None,
-    };
-    Some(split / f64::from(row.gi_scale * row.gi_scale))
+/// Whether a row belongs to the breakdown: a trace variant, the default or a preset.
+fn charted(row: &AccuracyRow) -> bool {
+    row.variant.starts_with("trace: ") || row.variant == "default" || row.variant.starts_with("quality ")
 }
 
 fn pass_ms(r: &AccuracyRow, pass: &str) -> f64 {
     r.passes.iter().find(|t| t.pass == pass).map_or(0.0, |t| t.ms)
 }
 
+/// The cones' time: the trace pass's, or where there is none (a set neither turned nor split,
+/// traced by each pixel as it is shaded) the shading pass's.
+fn trace_ms(r: &AccuracyRow) -> f64 {
+    let t = pass_ms(r, "trace");
+    if t > 0.0 {
+        t
+    } else {
+        pass_ms(r, "shade pixels")
+    }
+}
+
 /// The rows the breakdown shows: the presets and the trace variants of one scene and grid,
 /// slowest trace first.
-fn shown<'a>(rows: &'a [AccuracyRow], default: &GiFile) -> Vec<&'a AccuracyRow> {
+fn shown(rows: &[AccuracyRow]) -> Vec<&AccuracyRow> {
     let Some(first) = rows.iter().find(|r| r.variant.starts_with("trace: ")) else { return Vec::new() };
-    let mut out: Vec<&AccuracyRow> = rows
-        .iter()
-        .filter(|r| r.scene == first.scene && r.resolution == first.resolution && share_of(r, default).is_some())
-        .collect();
-    out.sort_by(|a, b| pass_ms(b, "trace").total_cmp(&pass_ms(a, "trace")));
+    let mut out: Vec<&AccuracyRow> =
+        rows.iter().filter(|r| r.scene == first.scene && r.resolution == first.resolution && charted(r)).collect();
+    out.sort_by(|a, b| trace_ms(b).total_cmp(&trace_ms(a)));
     out
 }
 
-/// The breakdown as a table: each row's trace and shading times, the trace per pixel and per
-/// cone, beside its FLIP.
-pub fn table(rows: &[AccuracyRow], default: &GiFile) -> String {
-    let rows = shown(rows, default);
+/// The breakdown as a table: each row's cone tracing and shading times beside its FLIP.
+pub fn table(rows: &[AccuracyRow]) -> String {
+    let rows = shown(rows);
     let Some(first) = rows.first() else { return String::new() };
-    let pixels = f64::from(first.width.max(1) * first.height.max(1));
-    let cones = crate::scene::cones::cones(default.cones).iter().filter(|c| c.dir_weight[3] > 0.0).count() as f64;
     let mut s = format!(
-        "The trace of one frame taken apart ({}, {}³, {} × {} pixels, {cones} cones a set): each row changes one \
-         thing, timed on the same view (median GPU ms over the frames), its FLIP against the path-traced reference \
-         beside it. \"cones a pixel\" is what each shaded pixel pays for; \"µs a cone\" the trace over the cones \
-         traced. The shading pass holds the resolve.\n\n",
-        first.scene, first.resolution, first.width, first.height
+        "The cone trace of one frame taken apart ({}, {}³, the scene's own view): each row changes one thing, \
+         timed on the same view (median GPU ms over the frames), its FLIP against the path-traced reference \
+         beside it. `high` traces the whole set of sixteen cones at every pixel, the default a quarter of it, \
+         `draft` the whole set at one pixel in four where its traced pixels lie too far apart to split it. The \
+         shading pass holds the resolve.\n\n",
+        first.scene, first.resolution
     );
-    s += "| variant | cones a pixel | trace ms | µs a cone | shading ms | frame ms | FLIP |\n|---|---|---|---|---|---|---|\n";
+    s += "| variant | cone tracing ms | shading ms | frame ms | FLIP |\n|---|---|---|---|---|\n";
     for r in rows {
-        let share = share_of(r, default).unwrap_or(1.0);
-        let trace = pass_ms(r, "trace");
         s += &format!(
-            "| {} | {:.2} | {:.1} | {:.3} | {:.1} | {:.1} | {:.4} |\n",
+            "| {} | {:.1} | {:.1} | {:.1} | {:.4} |\n",
             r.variant.trim_start_matches("trace: "),
-            share * cones,
-            trace,
-            1e3 * trace / (pixels * share * cones).max(1.0),
+            trace_ms(r),
             pass_ms(r, "shade pixels"),
             r.frame_ms,
             r.flip
@@ -92,8 +84,8 @@ pub fn table(rows: &[AccuracyRow], default: &GiFile) -> String {
 
 /// Draws the breakdown as `trace.png` and `.svg` in `dir`: one bar a row, its trace time, labelled
 /// with its FLIP. Nothing where the rows hold no trace variants.
-pub fn draw(dir: &Path, rows: &[AccuracyRow], default: &GiFile) -> Result<Vec<PathBuf>> {
-    let rows = shown(rows, default);
+pub fn draw(dir: &Path, rows: &[AccuracyRow]) -> Result<Vec<PathBuf>> {
+    let rows = shown(rows);
     if rows.is_empty() {
         return Ok(Vec::new());
     }
@@ -110,23 +102,23 @@ pub fn draw(dir: &Path, rows: &[AccuracyRow], default: &GiFile) -> Result<Vec<Pa
 
 fn bars<DB: DrawingBackend>(root: DrawingArea<DB, plotters::coord::Shift>, rows: &[&AccuracyRow]) -> DrawResult<DB> {
     root.fill(&WHITE)?;
-    let top = rows.iter().map(|r| pass_ms(r, "trace")).fold(1.0, f64::max) * 1.35;
+    let top = rows.iter().map(|r| trace_ms(r)).fold(1.0, f64::max) * 1.35;
     let mut chart = ChartBuilder::on(&root)
         .caption("Cone trace GPU time by variant (FLIP against the path tracer beside each)", ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(36)
         .y_label_area_size(10)
         .build_cartesian_2d(0f64..top, -0.5f64..rows.len() as f64 - 0.5)?;
-    chart.configure_mesh().x_desc("trace ms").disable_y_mesh().y_labels(0).draw()?;
+    chart.configure_mesh().x_desc("cone tracing ms").disable_y_mesh().y_labels(0).draw()?;
     chart.draw_series(rows.iter().enumerate().map(|(i, r)| {
         let y = (rows.len() - 1 - i) as f64;
         let c = if r.variant.starts_with("trace: ") { RGBColor(31, 119, 180) } else { RGBColor(214, 39, 40) };
-        Rectangle::new([(0.0, y - 0.35), (pass_ms(r, "trace"), y + 0.35)], c.filled())
+        Rectangle::new([(0.0, y - 0.35), (trace_ms(r), y + 0.35)], c.filled())
     }))?;
     chart.draw_series(rows.iter().enumerate().map(|(i, r)| {
         let y = (rows.len() - 1 - i) as f64;
         let label = format!("{}  FLIP {:.4}", r.variant.trim_start_matches("trace: "), r.flip);
-        Text::new(label, (pass_ms(r, "trace") + top * 0.01, y + 0.15), ("sans-serif", 12))
+        Text::new(label, (trace_ms(r) + top * 0.01, y + 0.15), ("sans-serif", 12))
     }))?;
     root.present()
 }

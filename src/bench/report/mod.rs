@@ -215,7 +215,7 @@ pub fn measure_light(
             }
             let patterned = variants.len();
             if res == shown && k == 0 {
-                variants.extend(accuracy::trace_cost::variants(&gi).into_iter().map(|(v, _)| v));
+                variants.extend(accuracy::trace_cost::variants(&gi));
             }
             for (i, v) in variants.iter().enumerate() {
                 progress(&format!("indirect light: {name} at {res}³, {}", v.name));

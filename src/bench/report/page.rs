@@ -183,10 +183,10 @@ fn region_range(r: &AccuracyRow) -> String {
 fn speed(runs: &[SpeedRun]) -> String {
     fn median(mut v: Vec<f64>) -> f64 {
         v.sort_by(f64::total_cmp);
-        if v.is_empty() {
-            0.0
-        } else {
-            v[v.len() / 2]
+        match v.len() {
+            0 => 0.0,
+            n if n % 2 == 0 => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+            n => v[n / 2],
         }
     }
     let mut cases: Vec<&str> = Vec::new();
@@ -203,7 +203,8 @@ fn speed(runs: &[SpeedRun]) -> String {
         "This tree (`new`) against the landed main (`main`), both built on this machine and run alternately, \
          {rounds} rounds a case (`scripts/speed-vs-main.sh`): the median GPU time of a frame (over each run's \
          frames; the first frame, which also pays for llvmpipe compiling each pipeline, counts only in the \
-         run's wall clock), and the ratio main / new.\n\n"
+         run's wall clock), and the ratio main / new. A share is \"–\" where the pass ran only in the frames \
+         that built the volume (a still view keeps it).\n\n"
     );
     s += &table(
         &[
@@ -218,7 +219,16 @@ fn speed(runs: &[SpeedRun]) -> String {
         ],
         cases.iter().map(|c| {
             let (b, n) = (of(c, "base", &|r| r.pass_ms("total")), of(c, "new", &|r| r.pass_ms("total")));
-            let share = |pass: &str| format!("{:.1}%", 100.0 * of(c, "new", &|r| r.pass_ms(pass)) / n.max(1e-9));
+            // A pass that ran only in some frames (the volume's passes, where a still view keeps
+            // the volume) has its median over those: no share of the frame's median.
+            let share = |pass: &str| {
+                let ms = of(c, "new", &|r| r.pass_ms(pass));
+                if ms <= n {
+                    format!("{:.1}%", 100.0 * ms / n.max(1e-9))
+                } else {
+                    "–".into()
+                }
+            };
             vec![
                 c.to_string(),
                 format!("{b:.1}"),
@@ -454,10 +464,9 @@ pub fn sections(dir: &Path, sub: &str, data: &Data) -> Result<Vec<Section>> {
         charts::draw_accuracy(&d, &charted, charts::Cost::Time)?;
         let md = light(&data.accuracy) + &light_images(dir, &d)?;
         push("light", "Does the indirect light agree with the path tracer?", md, vec![svg_of(&d, "accuracy")]);
-        let default = crate::scene::file::GiFile::default();
-        let breakdown = trace_cost::table(&data.accuracy, &default);
+        let breakdown = trace_cost::table(&data.accuracy);
         if !breakdown.is_empty() {
-            trace_cost::draw(&d, &data.accuracy, &default)?;
+            trace_cost::draw(&d, &data.accuracy)?;
             push("trace", "Where does a pixel's time go?", breakdown, vec![svg_of(&d, "trace")]);
         }
     }
