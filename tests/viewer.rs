@@ -58,7 +58,10 @@ fn viewer_matches_headless(name: &str, env: &[(&str, &str)], extra: &[&str]) {
     // The viewer's accumulation has traced every pixel once after gi-scale² (64) frames.
     let view = [&["view", "--frames", "72", "--screenshot", shot.to_str().unwrap()][..], &common].concat();
     run_with(&view, true, env);
-    run(&[&["render", "--out", headless.to_str().unwrap()][..], &common].concat(), false);
+    // The accumulated view converges to the whole set traced at every pixel: `--quality high`
+    // (the default splits the set among pixels, which accumulation does not).
+    let high = ["--quality", "high", "--out", headless.to_str().unwrap()];
+    run(&[&["render"][..], &high, &common].concat(), false);
     let (mean, over) = difference(&shot, &headless);
     println!("viewer vs headless: mean |Δ| {mean:.3}, share over 8: {over:.4}");
     assert!(mean < 1.0 && over < 0.01, "viewer and headless renders differ: mean {mean}, share over 8 {over}");

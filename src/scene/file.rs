@@ -72,9 +72,9 @@ pub struct GiFile {
     /// cones' cells in other directions: a cone reads its footprint round its axis, and where
     /// its cell's light lies off that axis (beside an occluder, below a spotlight's edge) a fixed
     /// set misses it at every pixel alike (docs/design/cones.md). Deferred shading
-    /// at full resolution then resolves each pixel's gather from its 3×3 neighbours on the same
-    /// surface; at a reduced GI scale the upsampling mixes the turns, and forward shading leaves
-    /// each pixel its own.
+    /// at full resolution then resolves each pixel's gather from its neighbours on the same
+    /// surface (3×3, or 5×5 per quarter with `split_cones`); at a reduced GI scale the upsampling
+    /// mixes the turns, and forward shading leaves each pixel its own.
     pub turn_cones: bool,
     /// Split the diffuse cone set among each 2×2 block of pixels (with `turn_cones`, in deferred
     /// shading at full resolution): each pixel traces a quarter of the cones, and the resolve

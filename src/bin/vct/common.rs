@@ -84,7 +84,8 @@ pub struct SceneArgs {
     pub quality: vct::render::Quality,
     /// Trace the diffuse cones at one pixel in 1, 4, 16 or 64 (1|2|4|8), upsampled edge-aware on the
     /// G-buffer's depth and normal (deferred tracing; the specular cone too, see --gi-specular).
-    /// Default: 1 for `render` (a headless frame affords every pixel), 8 for `view`.
+    /// Default: for `render` the preset's (--quality: traced pixels at most half a voxel apart), 8
+    /// for `view`.
     #[arg(long)]
     pub gi_scale: Option<u32>,
     /// Accumulate those reduced-resolution cones over frames in screen space: the traced pixel
