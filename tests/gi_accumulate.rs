@@ -171,6 +171,8 @@ enum Motion {
 fn under_motion(ctx: &std::sync::Arc<vct::gpu::Context>, motion: Motion, scale: u32, frames: u32) -> [f64; 4] {
     let mut scene = Scene::embedded_default().unwrap();
     scene.set_size(Some(96), Some(96)).unwrap();
+    // Full resolution traces the whole set at every pixel, as in `scene`.
+    scene.settings.gi.split_cones = false;
     let o = |gi_scale, gi_accumulate| RenderOptions {
         resolution: Some(32),
         view: View::Indirect,
