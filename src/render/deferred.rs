@@ -421,20 +421,14 @@ impl DeferredShadePass {
             }
             gpu::memory_barrier(ctx, cmd, scope::CLEAR_WRITE, rw);
         }
-        if let Some(trace) = &self.trace_pipeline {
-            trace.bind(cmd, &[scene.set.raw]);
-            trace.bind_set(cmd, 2, set);
+        // The trace, then the split set's resolve, each over the traced pixels.
+        for (pipeline, name) in [(&self.trace_pipeline, "trace"), (&self.resolve_pipeline, "resolve")] {
+            let Some(p) = pipeline else { continue };
+            p.bind(cmd, &[scene.set.raw]);
+            p.bind_set(cmd, 2, set);
             let (w, h) = (self.diffuse_low.desc.extent.width, self.diffuse_low.desc.extent.height);
             let local = crate::config::WORKGROUP_2D;
-            timer.span(cmd, "trace", || gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]));
-            gpu::memory_barrier(ctx, cmd, rw, rw);
-        }
-        if let Some(resolve) = &self.resolve_pipeline {
-            resolve.bind(cmd, &[scene.set.raw]);
-            resolve.bind_set(cmd, 2, set);
-            let (w, h) = (self.diffuse_low.desc.extent.width, self.diffuse_low.desc.extent.height);
-            let local = crate::config::WORKGROUP_2D;
-            timer.span(cmd, "resolve", || gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]));
+            timer.span(cmd, name, || gpu::dispatch(ctx, cmd, [w, h, 1], [local, local, 1]));
             gpu::memory_barrier(ctx, cmd, rw, rw);
         }
         if let Some(accumulate) = &self.accumulate_pipeline {

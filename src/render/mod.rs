@@ -320,20 +320,6 @@ fn volume_key(u: &FrameUniforms, camera: bool) -> Vec<u8> {
     bytemuck::bytes_of(&k).to_vec()
 }
 
-/// The model the deferred trace runs: the scene's, with the cone set split among the traced
-/// pixels only where they lie at most half a voxel apart (`quality::auto_scale`): the split set's
-/// resolve spans 5×5 traced pixels, which then stay within 2.5 voxels, about a cone's own
-/// footprint; farther apart (a `--gi-scale` given beyond it) each traced pixel traces the whole
-/// set. Measured (the diffuse view against the whole set at every pixel): from inside the
-/// Cornell box at 640×360, 64³, scale 2 within reach, split 4.0% of the mean, the whole set
-/// upsampled 11.1% (tests/gi_scale.rs); from outside at 256², 64³, a voxel two pixels, split at
-/// scale 4 spans seven voxels: 11.4%.
-fn traced_model(scene: &Scene, options: &RenderOptions) -> crate::scene::file::GiFile {
-    let voxels = options.resolution.unwrap_or(scene.settings.voxel_resolution);
-    let within = options.gi_scale <= quality::auto_scale(scene, voxels);
-    crate::scene::file::GiFile { split_cones: scene.settings.gi.split_cones && within, ..scene.settings.gi.clone() }
-}
-
 impl Renderer {
     pub fn new(ctx: &Arc<Context>, scene: Scene, mut options: RenderOptions) -> Result<Self> {
         // The options say what runs (labels, timings, the viewer's overlay).
@@ -410,7 +396,7 @@ impl Renderer {
                     &radiance,
                     &voxels.bricks,
                     &targets,
-                    &traced_model(&scene, &options),
+                    &quality::traced_model(&scene, &options),
                     s,
                     acc,
                     options.reduced_specular,
@@ -685,7 +671,7 @@ impl Renderer {
                 &self.radiance,
                 &self.voxels.bricks,
                 &self.targets,
-                &traced_model(&self.scene, &self.options),
+                &quality::traced_model(&self.scene, &self.options),
                 self.options.gi_scale,
                 self.options.gi_accumulate,
                 self.options.reduced_specular,

@@ -221,10 +221,6 @@ pub fn region_log_error_text(regions: &[RegionRow]) -> String {
     region_log_error(regions).map_or("–".to_string(), |e| format!("{e:.3}"))
 }
 
-fn one() -> u32 {
-    1
-}
-
 /// One variant on one scene.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct AccuracyRow {
@@ -236,9 +232,6 @@ pub struct AccuracyRow {
     /// Each pass's median GPU time (ms) over the frames timed.
     #[serde(default)]
     pub passes: Vec<Timing>,
-    /// The diffuse cones were traced at one pixel in this squared (`RenderOptions::gi_scale`).
-    #[serde(default = "one")]
-    pub gi_scale: u32,
     /// The volume's memory (voxel textures, radiance, lists), MiB.
     pub memory_mib: f64,
     pub flip: f32,
@@ -466,7 +459,6 @@ pub fn measure(
     frames: u32,
 ) -> Result<AccuracyRow> {
     let (scene, options) = variant.setup(&j.scene, resolution);
-    let gi_scale = options.gi_scale;
     let Timed { passes, linear: full, rgb, memory } = render_timed(ctx, &scene, options, frames)?;
     let ms = passes.iter().find(|t| t.pass == "total").map_or(0.0, |t| t.ms);
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -515,7 +507,6 @@ pub fn measure(
         bounces: variant.gi.bounces,
         frame_ms: ms,
         passes,
-        gi_scale,
         memory_mib: memory as f64 / (1u64 << 20) as f64,
         flip,
         flip_direct_only,
